@@ -1,0 +1,40 @@
+#pragma once
+/// A configuration flattened to dotted keys ("tire.front.mu") with the file and line each value
+/// came from. Files are applied in order (defaults first, then overlays), then `--set key=value`
+/// overrides; a later value replaces an earlier one. Sequences are leaves (waypoint lists).
+#include <map>
+#include <set>
+#include <string>
+
+#include <yaml-cpp/yaml.h>
+
+namespace lane_keeping {
+
+class FlatParams {
+ public:
+  struct Entry {
+    YAML::Node value;      ///< scalar or sequence
+    std::string location;  ///< "file.yaml:12" or "--set"
+  };
+
+  /// Parses and overlays a YAML file. Throws ConfigError naming the file (and line for syntax
+  /// errors) if it is missing, unreadable, malformed, or not a mapping at the top.
+  void overlayFile(const std::string& path);
+  /// Overlays YAML text (used for ROS parameter trees and tests); `origin` names it in errors.
+  void overlayText(const std::string& yaml_text, const std::string& origin);
+  /// Overlays an already parsed YAML mapping.
+  void overlayNode(const YAML::Node& root, const std::string& origin);
+  /// Applies "key=value" (value parsed as YAML, so lists work). Throws ConfigError if malformed.
+  void overlayAssignment(const std::string& assignment);
+
+  const Entry* find(const std::string& key) const;
+  bool contains(const std::string& key) const { return find(key) != nullptr; }
+  const std::map<std::string, Entry>& entries() const { return entries_; }
+  std::string locationOf(const std::string& key) const;
+
+ private:
+  void flatten(const YAML::Node& node, const std::string& prefix, const std::string& origin);
+  std::map<std::string, Entry> entries_;
+};
+
+}  // namespace lane_keeping

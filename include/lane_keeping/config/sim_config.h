@@ -1,0 +1,44 @@
+#pragma once
+/// The one configuration schema shared by nodes, tools and tests (DESIGN §2).
+/// Compiled-in defaults are the paper's values; config/default.yaml lists them all; scenario
+/// files overlay only what differs; `--set key=value` overrides last.
+#include <ostream>
+#include <string>
+#include <vector>
+
+#include "lane_keeping/config/flat_params.h"
+#include "lane_keeping/control/actuator_params.h"
+#include "lane_keeping/control/path_params.h"
+#include "lane_keeping/control/tracker_params.h"
+#include "lane_keeping/sim/delay_params.h"
+#include "lane_keeping/sim/simulation_params.h"
+#include "lane_keeping/tire/tire_params.h"
+#include "lane_keeping/vehicle/vehicle_params.h"
+
+namespace lane_keeping {
+
+struct SimConfig {
+  VehicleParams vehicle;
+  TireParams tire_front;
+  TireParams tire_rear;
+  PathParams path;
+  TrackerParams tracker;
+  ActuatorParams actuator;
+  DelayParams delays;
+  SimulationParams simulation;
+
+  void visit(ParamVisitor& v);
+  /// All problems: ranges (RangeChecker), cross-field rules, and integration stability limits.
+  std::vector<ConfigProblem> problems() const;
+  /// Throws ConfigError listing every problem; `source` adds file:line locations.
+  void validate(const FlatParams* source = nullptr) const;
+  void print(std::ostream& out, bool with_docs = false) const;
+};
+
+/// Paper defaults, then each file in order, then each "key=value". Unknown keys, type errors and
+/// invalid values all fail with a ConfigError that names the key and the file:line.
+SimConfig loadSimConfig(const std::vector<std::string>& files, const std::vector<std::string>& assignments = {});
+/// Same from an already assembled FlatParams (ROS parameter trees arrive this way).
+SimConfig simConfigFromFlat(const FlatParams& source);
+
+}  // namespace lane_keeping

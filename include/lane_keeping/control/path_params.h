@@ -1,0 +1,56 @@
+#pragma once
+/// The reference path (lane centre) as a graph y = f(x) in the map frame.
+#include <string>
+#include <vector>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/param_visitor.h"
+
+namespace lane_keeping {
+
+struct PathParams {
+  std::string type = "straight";  ///< straight | lane_change | sinusoid | waypoints
+  double lane_width = 3.5;        ///< [m] for lane boundaries (rviz) and the departure flag in the summary
+  // lane_change: quintic (C2) shift of `offset` between x = start and x = start + length.
+  double lane_change_start = 30.0;   ///< [m]
+  double lane_change_length = 60.0;  ///< [m]
+  double lane_change_offset = 3.5;   ///< [m], left positive
+  // sinusoid: y = A w(x) sin(2 pi (x - start) / wavelength), w fades in over the first wavelength.
+  double sinusoid_amplitude = 1.0;    ///< A [m]
+  double sinusoid_wavelength = 150.0; ///< [m]
+  double sinusoid_start = 30.0;       ///< [m]
+  // waypoints: natural cubic spline through the points (x strictly increasing), straight beyond.
+  std::vector<Point2> waypoints{{0.0, 0.0}, {50.0, 0.0}, {100.0, 2.0}, {150.0, 2.0}};
+
+  void visit(ParamVisitor& v, const std::string& prefix) {
+    v.choice(prefix + "type", type, {"straight", "lane_change", "sinusoid", "waypoints"},
+             "lane centre: straight (x axis), lane_change, sinusoid, or waypoints");
+    v.number(prefix + "lane_width", lane_width, "m", Range::positive(), "lane width (boundaries, departure flag)");
+    v.number(prefix + "lane_change.start", lane_change_start, "m", Range::any(), "x where the lane change begins");
+    v.number(prefix + "lane_change.length", lane_change_length, "m", Range::positive(),
+             "longitudinal length of the quintic lane change");
+    v.number(prefix + "lane_change.offset", lane_change_offset, "m", Range::any(), "lateral shift, left positive");
+    v.number(prefix + "sinusoid.amplitude", sinusoid_amplitude, "m", Range::any(), "amplitude A");
+    v.number(prefix + "sinusoid.wavelength", sinusoid_wavelength, "m", Range::positive(), "wavelength");
+    v.number(prefix + "sinusoid.start", sinusoid_start, "m", Range::any(),
+             "x where the sinusoid starts (amplitude fades in over one wavelength)");
+    v.points(prefix + "waypoints", waypoints, "m", "[[x, y], ...] with strictly increasing x (waypoints type)");
+  }
+
+  void validate(const std::string& prefix, std::vector<ConfigProblem>& problems) const {
+    if (type != "waypoints") return;
+    if (waypoints.size() < 2) {
+      problems.push_back({prefix + "waypoints", "", "needs at least 2 points, got " + std::to_string(waypoints.size())});
+      return;
+    }
+    for (std::size_t i = 1; i < waypoints.size(); ++i) {
+      if (!(waypoints[i][0] > waypoints[i - 1][0])) {
+        problems.push_back({prefix + "waypoints", "",
+                            "[" + std::to_string(i) + "]: x must increase strictly along the lane (x[" +
+                                std::to_string(i) + "] <= x[" + std::to_string(i - 1) + "])"});
+      }
+    }
+  }
+};
+
+}  // namespace lane_keeping

@@ -1,0 +1,55 @@
+#pragma once
+/// One tire of an axle, whichever model the config names. The models share no base class: each has
+/// a templated `evaluate` (so Ceres Jets can differentiate the same code the simulator runs), and
+/// this wrapper dispatches over a std::variant. `createTire` is the one registry of model names.
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "lane_keeping/tire/brush_tire.h"
+#include "lane_keeping/tire/contact_kinematics.h"
+#include "lane_keeping/tire/lugre_distributed_tire.h"
+#include "lane_keeping/tire/lugre_lumped_tire.h"
+#include "lane_keeping/tire/magic_formula_tire.h"
+#include "lane_keeping/tire/tire_params.h"
+
+namespace lane_keeping {
+
+class Tire {
+ public:
+  using Model = std::variant<BrushTire, LugreLumpedTire, LugreDistributedTire, MagicFormulaTire>;
+
+  Tire(std::string name, Model model, double normal_load);
+
+  const std::string& name() const { return name_; }
+  double normalLoad() const { return normal_load_; }
+  int stateSize() const;
+
+  /// Forces and the state derivative. `state` and `state_dot` hold stateSize() values.
+  template <typename T>
+  TireForces<T> evaluate(const ContactKinematics<T>& kinematics, const T* state, T* state_dot) const {
+    return std::visit([&](const auto& model) { return model.evaluate(kinematics, state, state_dot); }, model_);
+  }
+
+  /// Forces after the internal states have settled at constant slip (the static curve).
+  TireForces<double> steadyState(const ContactKinematics<double>& kinematics) const;
+
+  /// Half-length a used for the leading-point slip angle of Beregi eq 8 (brush a; LuGre L/2).
+  double contactHalfLength() const;
+  /// Small-slip dF/dtan(alpha) [N/rad] and -dM/dtan(alpha) [N m/rad] of the static curve.
+  double corneringStiffness() const;
+  double aligningStiffness() const;
+
+  const Model& model() const { return model_; }
+
+ private:
+  std::string name_;
+  Model model_;
+  double normal_load_;
+};
+
+/// Builds the model named by params.model for an axle carrying `normal_load` [N].
+/// Throws ConfigError for an unknown model name.
+Tire createTire(const TireParams& params, double normal_load);
+
+}  // namespace lane_keeping

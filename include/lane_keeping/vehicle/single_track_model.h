@@ -1,0 +1,154 @@
+#pragma once
+/// Beregi's single-track model of a front-wheel-drive car with a steered front axle:
+/// kinematics (eq 2), Appell-Gibbs dynamics (eqs 3-5), slip angles at the leading points of the
+/// contact patches (eq 8), and the tire of each axle (any model of tire.h).
+///
+/// State layout: [x, y, psi, delta, sigma1, sigma2, sigma3 | front tire states | rear tire states]
+///   x, y   position of G in map [m];  psi yaw [rad];  delta steering angle [rad]
+///   sigma1 lateral velocity of G in the body frame [m/s];  sigma2 yaw rate [rad/s];
+///   sigma3 steering rate [rad/s]  (Beregi's pseudo-velocities)
+/// Input: the steering torque M_S [N m]. The speed V of the front axle along its wheel is held
+/// constant by the non-holonomic constraint (eq 1); the traction force that does so is the
+/// constraint force and does not appear.
+///
+/// Eqs 3-5 agree term by term with an independent Gibbs-Appell derivation (README, "Model checks").
+/// Eq 8 (front) divides the contact-patch term a (sigma2 + sigma3) by V cos(delta); the kinematics
+/// of the leading point give V. We keep the printed form (it differs only at second order in delta).
+#include <cmath>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "lane_keeping/common/scalar.h"
+#include "lane_keeping/sim/simulation_params.h"
+#include "lane_keeping/tire/tire.h"
+#include "lane_keeping/vehicle/vehicle_params.h"
+
+namespace lane_keeping {
+
+enum RigidState : int { kX = 0, kY, kPsi, kDelta, kSigma1, kSigma2, kSigma3, kRigidStateSize };
+
+/// Everything a user may want to see at one instant (SI; angles in rad).
+template <typename T>
+struct VehicleOutputs {
+  T x_dot{0.0}, y_dot{0.0};               ///< velocity of G in map
+  T longitudinal_velocity{0.0};           ///< u, body-frame forward velocity of G
+  T lateral_acceleration{0.0};            ///< a_y = d(sigma1)/dt + sigma2 u, body frame, at G
+  T sigma_dot[3] = {T(0.0), T(0.0), T(0.0)};
+  T tan_slip_front{0.0}, tan_slip_rear{0.0};  ///< tan(alpha_F), tan(alpha_R), Beregi eq 8
+  TireForces<T> front, rear;
+};
+
+class SingleTrackModel {
+ public:
+  SingleTrackModel(const VehicleParams& params, Tire front, Tire rear);
+
+  int stateSize() const { return kRigidStateSize + front_.stateSize() + rear_.stateSize(); }
+  int frontTireOffset() const { return kRigidStateSize; }
+  int rearTireOffset() const { return kRigidStateSize + front_.stateSize(); }
+  const VehicleParams& params() const { return p_; }
+  const Tire& frontTire() const { return front_; }
+  const Tire& rearTire() const { return rear_; }
+
+  /// Initial state: the given rigid-body state, tires relaxed (zero deflection).
+  Eigen::VectorXd initialState(const InitialState& initial) const;
+
+  /// Generalised mass matrix of eq 4 at steering angle delta.
+  Eigen::Matrix3d massMatrix(double delta) const;
+
+  /// State derivative (eqs 2, 3, 5, 8 and the tire state equations) for steering torque M_S.
+  template <typename T>
+  void derivative(const T* x, const T& steering_torque, T* x_dot, VehicleOutputs<T>* outputs = nullptr) const {
+    using std::cos;
+    using std::sin;
+    const double l = p_.wheelbase, d = p_.cg_to_rear_axle, b = l - d, V = p_.speed;
+    const double m = p_.mass, mF = p_.steering_mass, JG = p_.yaw_inertia, JF = p_.steering_inertia;
+    const T& psi = x[kPsi];
+    const T& delta = x[kDelta];
+    const T& s1 = x[kSigma1];
+    const T& s2 = x[kSigma2];
+    const T& s3 = x[kSigma3];
+    const T c = cos(delta), s = sin(delta);
+    const T cp = cos(psi), sp = sin(psi);
+    const T inv_c = 1.0 / c;
+    const T tan_d = s * inv_c;
+
+    // Eq 2: kinematics. sin(psi + delta) and cos(psi + delta) by the addition theorems.
+    const T s_pd = sp * c + cp * s;
+    const T c_pd = cp * c - sp * s;
+    x_dot[kX] = V * cp * inv_c - s1 * s_pd * inv_c - s2 * b * cp * tan_d;
+    x_dot[kY] = V * sp * inv_c + s1 * c_pd * inv_c - s2 * b * sp * tan_d;
+    x_dot[kPsi] = s2;
+    x_dot[kDelta] = s3;
+
+    // Body-frame forward velocity of G from the constraint (row 1 of eq 1).
+    const T front_lateral = s1 + b * s2;  // lateral velocity of F in the body frame
+    const T u = (V - front_lateral * s) * inv_c;
+
+    // Eq 8: slip angles at the leading points Q (front) and P (rear).
+    const double aF = front_.contactHalfLength(), aR = rear_.contactHalfLength();
+    ContactKinematics<T> kf, kr;
+    kf.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c / V + tan_d;
+    kf.wheel_speed = T(V);
+    kf.lateral_slip_speed = V * tan_d - front_lateral * inv_c;  // -(lateral velocity of F across the wheel)
+    kf.yaw_rate = s2 + s3;
+    kr.tan_slip_angle = -(s1 - (d - aR) * s2) / u;
+    kr.wheel_speed = u;
+    kr.lateral_slip_speed = -(s1 - d * s2);
+    kr.yaw_rate = s2;
+
+    const TireForces<T> tf = front_.evaluate(kf, x + frontTireOffset(), x_dot + frontTireOffset());
+    const TireForces<T> tr = rear_.evaluate(kr, x + rearTireOffset(), x_dot + rearTireOffset());
+    const T& FF = tf.lateral_force;
+    const T& FR = tr.lateral_force;
+    const T& MF = tf.aligning_moment;
+    const T& MR = tr.aligning_moment;
+
+    // Eq 5: generalised forces.
+    const T inv_c3 = inv_c * inv_c * inv_c;
+    const T steer_term = (mF + m) * s * inv_c3 * (V * s - s1 - b * s2) * s3;
+    const T f1 = FF * inv_c + FR + inv_c * (-(mF + m) * V + m * s2 * b * s) * s2 + steer_term;
+    const T f2 = MF + MR + b * FF * inv_c - d * FR - b * inv_c * (mF * V + m * s1 * s) * s2 + b * steer_term;
+    const T f3 = MF + steering_torque;
+
+    // Eqs 3-4: solve M sigma_dot = f. Row 3 gives sigma3_dot = f3/JF - sigma2_dot; substituting it
+    // leaves a 2x2 system with determinant m11 (m22 - JF) - m12^2 > 0.
+    const T inv_c2 = inv_c * inv_c;
+    const T m11 = (mF + m) * inv_c2;
+    const T mixed = (mF + m * s * s) * inv_c2;
+    const T m12 = mixed * b;
+    const T m22_minus_JF = JG + mixed * b * b;
+    const T det = m11 * m22_minus_JF - m12 * m12;
+    const T rhs2 = f2 - f3;
+    const T s1_dot = (f1 * m22_minus_JF - m12 * rhs2) / det;
+    const T s2_dot = (m11 * rhs2 - m12 * f1) / det;
+    const T s3_dot = f3 / JF - s2_dot;
+    x_dot[kSigma1] = s1_dot;
+    x_dot[kSigma2] = s2_dot;
+    x_dot[kSigma3] = s3_dot;
+
+    if (outputs != nullptr) {
+      outputs->x_dot = x_dot[kX];
+      outputs->y_dot = x_dot[kY];
+      outputs->longitudinal_velocity = u;
+      outputs->lateral_acceleration = s1_dot + s2 * u;
+      outputs->sigma_dot[0] = s1_dot;
+      outputs->sigma_dot[1] = s2_dot;
+      outputs->sigma_dot[2] = s3_dot;
+      outputs->tan_slip_front = kf.tan_slip_angle;
+      outputs->tan_slip_rear = kr.tan_slip_angle;
+      outputs->front = tf;
+      outputs->rear = tr;
+    }
+  }
+
+ private:
+  VehicleParams p_;
+  Tire front_;
+  Tire rear_;
+};
+
+/// Builds the model of a configuration: static axle loads (DESIGN §3) and one tire per axle.
+SingleTrackModel createVehicleModel(const VehicleParams& vehicle, const TireParams& front, const TireParams& rear);
+
+}  // namespace lane_keeping

@@ -1,0 +1,29 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages lane_keeping needs (ROS 1 from Debian, Eigen, yaml-cpp, Ceres,
+# GoogleTest, matplotlib, Xvfb). Does nothing when everything is already installed.
+set -euo pipefail
+
+PACKAGES=(
+  build-essential cmake
+  ros-core-dev libroscpp-dev catkin ros-message-generation librostest-dev python3-rostest
+  libtf2-ros-dev libtf2-eigen-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
+  librosbag-dev python3-rosbag libnodeletlib-dev libnodeletlib-tools pluginlib-dev rviz
+  libeigen3-dev libyaml-cpp-dev libceres-dev libgtest-dev python3-matplotlib python3-numpy
+  xvfb xauth imagemagick
+)
+
+missing=()
+for pkg in "${PACKAGES[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$pkg" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$pkg")
+  fi
+done
+if [ ${#missing[@]} -eq 0 ]; then
+  exit 0
+fi
+echo "[install_deps] installing: ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -q
+$SUDO apt-get install -y -q --no-install-recommends "${missing[@]}"

@@ -1,0 +1,108 @@
+#include "lane_keeping/config/flat_params.h"
+
+#include <fstream>
+#include <sstream>
+
+#include "lane_keeping/common/errors.h"
+
+namespace lane_keeping {
+namespace {
+
+std::string lineOf(const std::string& origin, const YAML::Mark& mark) {
+  if (mark.line < 0) return origin;
+  return origin + ":" + std::to_string(mark.line + 1);
+}
+
+}  // namespace
+
+void FlatParams::overlayFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError(path + ": cannot open configuration file (missing or unreadable)");
+  std::stringstream buffer;
+  buffer << in.rdbuf();
+  overlayText(buffer.str(), path);
+}
+
+void FlatParams::overlayText(const std::string& yaml_text, const std::string& origin) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError(std::vector<ConfigProblem>{
+        {"", origin + ":" + std::to_string(e.mark.line + 1) + ":" + std::to_string(e.mark.column + 1),
+         "malformed YAML: " + e.msg}});
+  }
+  if (root.IsNull()) return;  // an empty overlay changes nothing
+  overlayNode(root, origin);
+}
+
+void FlatParams::overlayNode(const YAML::Node& root, const std::string& origin) {
+  if (!root.IsMap()) {
+    throw ConfigError(std::vector<ConfigProblem>{
+        {"", lineOf(origin, root.Mark()), "the top level must be a mapping of sections (vehicle:, tire:, ...)"}});
+  }
+  flatten(root, "", origin);
+}
+
+void FlatParams::flatten(const YAML::Node& node, const std::string& prefix, const std::string& origin) {
+  for (const auto& item : node) {
+    const std::string name = item.first.as<std::string>();
+    const std::string key = prefix.empty() ? name : prefix + "." + name;
+    const YAML::Node& value = item.second;
+    if (value.IsMap()) {
+      flatten(value, key, origin);
+    } else {
+      // A later scalar replaces any earlier subtree at the same key and vice versa.
+      for (auto it = entries_.begin(); it != entries_.end();) {
+        if (it->first.rfind(key + ".", 0) == 0) {
+          it = entries_.erase(it);
+        } else {
+          ++it;
+        }
+      }
+      entries_[key] = Entry{YAML::Clone(value), lineOf(origin, value.Mark())};
+    }
+  }
+}
+
+void FlatParams::overlayAssignment(const std::string& assignment) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos || eq == 0) {
+    throw ConfigError("--set '" + assignment + "': expected key=value, e.g. --set tracker.k_y=0.15");
+  }
+  const std::string key = assignment.substr(0, eq);
+  const std::string text = assignment.substr(eq + 1);
+  YAML::Node value;
+  try {
+    value = YAML::Load(text);
+  } catch (const YAML::ParserException& e) {
+    throw ConfigError("--set " + key + ": value '" + text + "' is not valid YAML: " + e.msg);
+  }
+  if (value.IsMap()) {
+    YAML::Node wrapper;
+    wrapper[key] = value;
+    // Keys given in dotted form: rebuild the nesting so flatten() sees them.
+    flatten(value, key, "--set");
+    return;
+  }
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    if (it->first.rfind(key + ".", 0) == 0) {
+      it = entries_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  entries_[key] = Entry{value, "--set"};
+}
+
+const FlatParams::Entry* FlatParams::find(const std::string& key) const {
+  const auto it = entries_.find(key);
+  return it == entries_.end() ? nullptr : &it->second;
+}
+
+std::string FlatParams::locationOf(const std::string& key) const {
+  const Entry* entry = find(key);
+  return entry ? entry->location : std::string();
+}
+
+}  // namespace lane_keeping

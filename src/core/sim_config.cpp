@@ -1,0 +1,95 @@
+#include "lane_keeping/config/sim_config.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "lane_keeping/config/param_readers.h"
+
+namespace lane_keeping {
+
+void SimConfig::visit(ParamVisitor& v) {
+  vehicle.visit(v, "vehicle.");
+  tire_front.visit(v, "tire.front.");
+  tire_rear.visit(v, "tire.rear.");
+  path.visit(v, "path.");
+  tracker.visit(v, "tracker.");
+  actuator.visit(v, "actuator.");
+  delays.visit(v, "delays.");
+  simulation.visit(v, "simulation.");
+}
+
+namespace {
+
+/// RK4's stability interval on the negative real axis is about [-2.785, 0]. The transport term of
+/// the distributed LuGre model (Deur eq 22) has eigenvalues down to -V (N - 1) / L.
+void checkDistributedTireStep(const TireParams& tire, const std::string& prefix, double speed, double step,
+                              std::vector<ConfigProblem>& problems) {
+  if (tire.model != "lugre_distributed") return;
+  const double rate = speed * (tire.lugre.bristles - 1) / tire.contactLength();
+  const double product = rate * step;
+  const double limit = 2.5;
+  if (product > limit) {
+    const int max_bristles = static_cast<int>(std::floor(limit * tire.contactLength() / (speed * step))) + 1;
+    std::ostringstream message;
+    message << "= " << tire.lugre.bristles << " with simulation.step = " << formatNumber(step)
+            << " s is beyond RK4's stability limit: transport rate V (N-1)/L = " << formatNumber(rate)
+            << " 1/s times the step = " << formatNumber(product) << " > " << limit << "; use at most "
+            << max_bristles << " bristles or step <= " << formatNumber(limit / rate) << " s";
+    problems.push_back({prefix + "lugre.bristles", "", message.str()});
+  }
+}
+
+}  // namespace
+
+std::vector<ConfigProblem> SimConfig::problems() const {
+  SimConfig copy = *this;  // visit() takes non-const references
+  RangeChecker checker;
+  copy.visit(checker);
+  std::vector<ConfigProblem> problems = checker.problems();
+  vehicle.validate("vehicle.", problems);
+  tire_front.validate("tire.front.", problems);
+  tire_rear.validate("tire.rear.", problems);
+  path.validate("path.", problems);
+  simulation.validate("simulation.", problems);
+  checkDistributedTireStep(tire_front, "tire.front.", vehicle.speed, simulation.step, problems);
+  checkDistributedTireStep(tire_rear, "tire.rear.", vehicle.speed, simulation.step, problems);
+  return problems;
+}
+
+void SimConfig::validate(const FlatParams* source) const {
+  std::vector<ConfigProblem> found = problems();
+  if (found.empty()) return;
+  if (source != nullptr) {
+    for (auto& problem : found) {
+      if (problem.location.empty()) problem.location = source->locationOf(problem.key);
+    }
+  }
+  throw ConfigError(found);
+}
+
+void SimConfig::print(std::ostream& out, bool with_docs) const {
+  SimConfig copy = *this;
+  ParamPrinter printer(out, with_docs);
+  copy.visit(printer);
+}
+
+SimConfig simConfigFromFlat(const FlatParams& source) {
+  SimConfig config;
+  FlatParamReader reader(source);
+  config.visit(reader);
+  std::vector<ConfigProblem> problems = reader.problems();
+  const auto unknown = reader.unknownKeyProblems();
+  problems.insert(problems.end(), unknown.begin(), unknown.end());
+  if (!problems.empty()) throw ConfigError(problems);
+  config.validate(&source);
+  return config;
+}
+
+SimConfig loadSimConfig(const std::vector<std::string>& files, const std::vector<std::string>& assignments) {
+  FlatParams source;
+  for (const auto& file : files) source.overlayFile(file);
+  for (const auto& assignment : assignments) source.overlayAssignment(assignment);
+  return simConfigFromFlat(source);
+}
+
+}  // namespace lane_keeping

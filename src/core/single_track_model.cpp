@@ -1,0 +1,36 @@
+#include "lane_keeping/vehicle/single_track_model.h"
+
+namespace lane_keeping {
+
+SingleTrackModel::SingleTrackModel(const VehicleParams& params, Tire front, Tire rear)
+    : p_(params), front_(std::move(front)), rear_(std::move(rear)) {}
+
+Eigen::VectorXd SingleTrackModel::initialState(const InitialState& initial) const {
+  Eigen::VectorXd x = Eigen::VectorXd::Zero(stateSize());
+  x[kX] = initial.x;
+  x[kY] = initial.y;
+  x[kPsi] = initial.psi;
+  x[kDelta] = initial.delta;
+  x[kSigma1] = initial.sigma1;
+  x[kSigma2] = initial.sigma2;
+  x[kSigma3] = initial.sigma3;
+  return x;
+}
+
+Eigen::Matrix3d SingleTrackModel::massMatrix(double delta) const {
+  // Beregi eq 4.
+  const double b = p_.cgToFrontAxle(), m = p_.mass, mF = p_.steering_mass;
+  const double c = std::cos(delta), s = std::sin(delta);
+  const double mixed = (mF + m * s * s) / (c * c);
+  Eigen::Matrix3d M;
+  M << (mF + m) / (c * c), mixed * b, 0.0,
+       mixed * b, p_.steering_inertia + p_.yaw_inertia + mixed * b * b, p_.steering_inertia,
+       0.0, p_.steering_inertia, p_.steering_inertia;
+  return M;
+}
+
+SingleTrackModel createVehicleModel(const VehicleParams& vehicle, const TireParams& front, const TireParams& rear) {
+  return SingleTrackModel(vehicle, createTire(front, vehicle.frontAxleLoad()), createTire(rear, vehicle.rearAxleLoad()));
+}
+
+}  // namespace lane_keeping
