@@ -1,1 +1,96 @@
-int main() { return 0; }
+// Benchmark of the core simulator (issue #2): the closed loop's real-time factor (simulated seconds
+// per wall second, one core) for every tire model at dt = 1e-4 s and 1e-5 s, and the cost of one
+// model derivative. Prints a table; numbers go in the README. Not a test: it asserts nothing.
+//   lk_bench_core [--duration SECONDS] [--repeat N]
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/sim/closed_loop.h"
+#include "lane_keeping/vehicle/single_track_model.h"
+
+using namespace lane_keeping;
+
+namespace {
+
+double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+SimConfig fig6(const std::string& tire, double step, double duration) {
+  // The paper's Fig 6 case (config/scenarios/fig6.yaml) with the tire model swapped.
+  SimConfig c;
+  c.simulation.name = "bench";
+  c.simulation.initial.y = 1.0;
+  c.simulation.step = step;
+  c.simulation.duration = duration;
+  c.tire_front.model = tire;
+  c.tire_rear.model = tire;
+  c.tracker.k_psi = 0.8;
+  c.tracker.k_y = 0.01;
+  c.actuator.p = 2000.0;
+  c.actuator.rate = 1.0 / step;  // one torque sample per plant step, as in the default config
+  c.delays.desired_steering_to_actuator = std::max(1e-4, step);
+  c.delays.steering_angle_to_actuator = std::max(1e-4, step);
+  if (tire == "lugre_distributed") c.tire_front.lugre.bristles = c.tire_rear.lugre.bristles = 50;
+  return c;
+}
+
+double derivativeNanoseconds(const std::string& tire) {
+  SimConfig c = fig6(tire, 1e-4, 1.0);
+  const SingleTrackModel model = createVehicleModel(c.vehicle, c.tire_front, c.tire_rear);
+  InitialState initial;
+  initial.y = 0.3;
+  initial.delta = 0.01;
+  initial.sigma1 = 0.1;
+  initial.sigma2 = 0.05;
+  Eigen::VectorXd x = model.initialState(initial), x_dot(model.stateSize());
+  const int n = 2000000;
+  const auto start = std::chrono::steady_clock::now();
+  double sink = 0.0;
+  for (int i = 0; i < n; ++i) {
+    x[kDelta] = 0.01 + 1e-9 * (i & 1023);
+    model.derivative(x.data(), 1.0, x_dot.data());
+    sink += x_dot[kSigma3];
+  }
+  const double ns = seconds(std::chrono::steady_clock::now() - start) / n * 1e9;
+  if (sink == 12345.678) std::printf(" ");
+  return ns;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  double duration = 20.0;
+  int repeat = 3;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    const std::string arg = argv[i];
+    if (arg == "--duration") duration = std::atof(argv[i + 1]);
+    if (arg == "--repeat") repeat = std::atoi(argv[i + 1]);
+  }
+  std::printf("lane_keeping core benchmark: Fig 6 closed loop (brush/LuGre tires), %g s simulated, best of %d,\n"
+              "one core, log at 1 kHz; distributed LuGre with N = 50 bristles per direction.\n\n",
+              duration, repeat);
+  std::printf("%-18s %14s %16s %16s\n", "tire model", "derivative ns", "RTF dt=1e-4 s", "RTF dt=1e-5 s");
+  for (const std::string tire : {"brush", "lugre_lumped", "lugre_distributed", "magic_formula"}) {
+    std::printf("%-18s %14.1f", tire.c_str(), derivativeNanoseconds(tire));
+    for (double step : {1e-4, 1e-5}) {
+      // dt = 1e-5 runs a tenth of the duration (same number of steps).
+      const double simulated = step < 1e-4 ? duration / 10.0 : duration;
+      const ClosedLoop loop(fig6(tire, step, simulated));
+      double best = 1e300;
+      for (int r = 0; r < repeat; ++r) {
+        const auto start = std::chrono::steady_clock::now();
+        const RunResult result = loop.run();
+        best = std::min(best, seconds(std::chrono::steady_clock::now() - start));
+        if (result.diverged()) std::printf(" (diverged: %s)", result.message.c_str());
+      }
+      std::printf(" %15.0fx", simulated / best);
+    }
+    std::printf("\n");
+    std::fflush(stdout);
+  }
+  return 0;
+}

@@ -212,7 +212,20 @@ void RangeChecker::points(const std::string& key, std::vector<Point2>& value, co
 // ParamPrinter
 // ----------------------------------------------------------------------------------------------
 void ParamPrinter::line(const std::string& key, const std::string& value, const char* unit, const char* doc) {
-  out_ << key << ": " << value;
+  std::vector<std::string> parts;
+  std::size_t start = 0;
+  for (std::size_t dot = key.find('.'); dot != std::string::npos; dot = key.find('.', start)) {
+    parts.push_back(key.substr(start, dot - start));
+    start = dot + 1;
+  }
+  const std::string leaf = key.substr(start);
+  std::size_t common = 0;
+  while (common < parts.size() && common < open_sections_.size() && parts[common] == open_sections_[common]) ++common;
+  for (std::size_t i = common; i < parts.size(); ++i) {
+    out_ << std::string(2 * i, ' ') << parts[i] << ":\n";
+  }
+  open_sections_ = parts;
+  out_ << std::string(2 * parts.size(), ' ') << leaf << ": " << value;
   if ((unit && unit[0]) || (with_docs_ && doc && doc[0])) {
     out_ << "  #";
     if (unit && unit[0]) out_ << " [" << unit << "]";
@@ -234,9 +247,15 @@ void ParamPrinter::integer(const std::string& key, int& value, const Range&, con
 void ParamPrinter::flag(const std::string& key, bool& value, const char* doc) {
   line(key, value ? "true" : "false", nullptr, doc);
 }
-void ParamPrinter::choice(const std::string& key, std::string& value, const std::vector<std::string>&,
+void ParamPrinter::choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed,
                           const char* doc) {
-  line(key, value, nullptr, doc);
+  if (!allowed.empty()) {
+    line(key, value, nullptr, doc);
+    return;
+  }
+  std::string quoted = "\"";
+  for (char c : value) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
+  line(key, quoted + "\"", nullptr, doc);
 }
 void ParamPrinter::points(const std::string& key, std::vector<Point2>& value, const char* unit, const char* doc) {
   std::ostringstream text;

@@ -3,7 +3,8 @@
 namespace lane_keeping {
 
 SingleTrackModel::SingleTrackModel(const VehicleParams& params, Tire front, Tire rear)
-    : p_(params), front_(std::move(front)), rear_(std::move(rear)) {}
+    : p_(params), front_(std::move(front)), rear_(std::move(rear)), inv_V_(1.0 / params.speed),
+      inv_JF_(1.0 / params.steering_inertia) {}
 
 Eigen::VectorXd SingleTrackModel::initialState(const InitialState& initial) const {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(stateSize());

@@ -55,7 +55,8 @@ class RangeChecker : public ParamVisitor {
   std::vector<ConfigProblem> problems_;
 };
 
-/// Prints "key: value  # unit — doc" lines (valid YAML), for logging the effective config.
+/// Prints the parameters as nested YAML ("section:\n  key: value  # [unit] doc"), for logging the
+/// effective configuration and for generating config/default.yaml.
 class ParamPrinter : public ParamVisitor {
  public:
   explicit ParamPrinter(std::ostream& out, bool with_docs = false) : out_(out), with_docs_(with_docs) {}
@@ -72,6 +73,7 @@ class ParamPrinter : public ParamVisitor {
   void line(const std::string& key, const std::string& value, const char* unit, const char* doc);
   std::ostream& out_;
   bool with_docs_;
+  std::vector<std::string> open_sections_;
 };
 
 /// Collects (key, unit, range, default, doc) rows: the README parameter table and the ROS

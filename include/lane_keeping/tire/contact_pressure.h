@@ -41,6 +41,56 @@ class ContactPressure {
     return p_m * (1.0 - s) / (1.0 - r_r_);
   }
 
+  template <typename T>
+  struct Factors {
+    T kappa;
+    T lambda;
+  };
+
+  /// kappa and lambda together (they share integrals). For uniform pressure, with the exponential
+  /// phi-functions phi_k(y) = sum_n (-y)^n / (n + k)!, eq 39 reduces to kappa = phi1 / phi2 (= eq 43)
+  /// and eq 53 to lambda = phi1 / (1 - 2 (1 + y) phi3) (= eq 57), both free of cancellation.
+  template <typename T>
+  Factors<T> factors(const T& y) const {
+    if (toDouble(y) == 0.0) return {T(2.0 / kv()), T(lambdaMax())};
+    if (!isUniform()) return {kappa(y), lambda(y)};
+    T phi1, phi2, phi3;
+    phiFunctions(y, &phi1, &phi2, &phi3);
+    if (toDouble(y) >= 1.0) {
+      // 1 - 2 (1 + y) phi3 cancels to ~1/y for large y (relative error ~1e-16 y: lambda = inf from
+      // y ~ 1e17). It equals (1 + 2 (exp(-y) - phi1) / y) / y (eq 57's denominator), which does not cancel.
+      using std::exp;
+      return {phi1 / phi2, phi1 * y / (1.0 + 2.0 * (exp(-y) - phi1) / y)};
+    }
+    return {phi1 / phi2, phi1 / (1.0 - 2.0 * (1.0 + y) * phi3)};
+  }
+
+  /// phi_1, phi_2, phi_3 of y >= 0: power series below y = 1, the recurrence
+  /// phi_(k+1) = (1/k! - phi_k) / y from phi_0 = exp(-y) above.
+  template <typename T>
+  static void phiFunctions(const T& y, T* phi1, T* phi2, T* phi3) {
+    using std::exp;
+    if (toDouble(y) < 1.0) {
+      // phi_k = sum_n (-y)^n / (n + k)!; stops once a term of phi_1 is below 1e-17 of phi_3 (~1/6).
+      T power(1.0);
+      *phi1 = T(kInverseFactorial[1]);
+      *phi2 = T(kInverseFactorial[2]);
+      *phi3 = T(kInverseFactorial[3]);
+      for (int n = 1; n + 3 < kFactorials; ++n) {
+        power = power * (-y);
+        *phi1 = *phi1 + power * kInverseFactorial[n + 1];
+        *phi2 = *phi2 + power * kInverseFactorial[n + 2];
+        *phi3 = *phi3 + power * kInverseFactorial[n + 3];
+        if (std::fabs(toDouble(power)) * kInverseFactorial[n + 1] <= 1e-17 * (1.0 / 6.0)) break;
+      }
+      return;
+    }
+    const T e0 = exp(-y);
+    *phi1 = (1.0 - e0) / y;
+    *phi2 = (1.0 - *phi1) / y;
+    *phi3 = (0.5 - *phi2) / y;
+  }
+
   /// kappa = S / z~ in steady state (Deur eq 39), y = L / Z >= 0. kappa(0) = 2 / K_v (eq 42b).
   template <typename T>
   T kappa(const T& y) const {
@@ -111,12 +161,21 @@ class ContactPressure {
     } else if (n == 1) {
       b = (1.0 - ex * (1.0 + x)) / (y * y);
     } else {
-      b = (2.0 - ex * (2.0 + 2.0 * x + x * x)) / (y * y * y);
+      // (ex x) x, not ex x^2: x^2 overflows for y c > 1e154 and 0 * inf would give NaN.
+      b = (2.0 - ex * (2.0 + 2.0 * x) - (ex * x) * x) / (y * y * y);
     }
     return cn1 / static_cast<double>(n + 1) - b;
   }
 
  private:
+  static constexpr int kFactorials = 24;
+  /// 1/n!, n = 0..23 (23!^-1 ~ 4e-23: the phi series for y < 1 ends well before).
+  static constexpr double kInverseFactorial[kFactorials] = {
+      1.0, 1.0, 1.0 / 2, 1.0 / 6, 1.0 / 24, 1.0 / 120, 1.0 / 720, 1.0 / 5040, 1.0 / 40320, 1.0 / 362880,
+      1.0 / 3628800, 1.0 / 39916800, 1.0 / 479001600, 1.0 / 6227020800.0, 1.0 / 87178291200.0,
+      1.0 / 1307674368000.0, 1.0 / 20922789888000.0, 1.0 / 355687428096000.0, 1.0 / 6402373705728000.0,
+      1.0 / 121645100408832000.0, 1.0 / 2432902008176640000.0, 1.0 / 51090942171709440000.0,
+      1.0 / 1124000727777607680000.0, 1.0 / 25852016738884976640000.0};
   static constexpr int kSeriesTerms = 32;
   /// kReciprocal[m] = 1/m (index 0 unused): multiplications instead of divisions in the series.
   static constexpr double kReciprocal[kSeriesTerms + 4] = {

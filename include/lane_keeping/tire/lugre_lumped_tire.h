@@ -43,36 +43,55 @@ class LugreLumpedTire {
   LugreLumpedTire(const LugreCoefficients& coefficients, const SlidingFriction& friction,
                   const ContactPressure& pressure, double kappa_constant, double lambda2)
       : c_(coefficients), g_(friction), pressure_(pressure), kappa_constant_(kappa_constant), lambda2_(lambda2),
-        kv_(pressure.kv()) {}
+        kv_(pressure.kv()), inv_L_(1.0 / coefficients.contact_length),
+        sigma0y_over_g_(friction.isConstant() ? coefficients.sigma0y / friction.constantValue() : 0.0) {}
 
   template <typename T>
   TireForces<T> evaluate(const ContactKinematics<T>& k, const T* z, T* z_dot) const {
+    using std::abs;
     const double L = c_.contact_length;
     const T& w = k.wheel_speed;
-    const T v_r = slipSpeedNorm(k.longitudinal_slip_speed, k.lateral_slip_speed);
-    const T g = g_(v_r);
-    const T c0x = c_.sigma0x * v_r / g;  // sigma0 |v_r| / g, the LuGre bristle-tip term
-    const T c0y = c_.sigma0y * v_r / g;
-    const T conv_x = kappa(c0x, w) * w / L;  // convective (transport) term of eq 38
-    const T conv_y = kappa(c0y, w) * w / L;
+    const T v_r = toDouble(k.longitudinal_slip_speed) == 0.0 ? T(abs(k.lateral_slip_speed))
+                                                              : slipSpeedNorm(k.longitudinal_slip_speed, k.lateral_slip_speed);
+    // sigma0 |v_r| / g, the LuGre bristle-tip term (g constant when mu = mu0: no division)
+    const T c0y = sigma0y_over_g_ > 0.0 ? T(sigma0y_over_g_ * v_r) : T(c_.sigma0y * v_r / g_(v_r));
 
-    z_dot[kZx] = k.longitudinal_slip_speed - (c0x + conv_x) * z[kZx];  // eq 38
-    z_dot[kZy] = k.lateral_slip_speed - (c0y + conv_y) * z[kZy];       // eq 38
+    // kappa (eq 39) and lambda (eq 53) at y = L / Z = L c0 / w.
+    T kappa_y, lambda;
+    if (toDouble(w) > 0.0) {
+      const auto f = pressure_.factors(T(L * c0y / w));
+      kappa_y = kappa_constant_ > 0.0 ? T(kappa_constant_) : f.kappa;
+      lambda = f.lambda;
+    } else {  // standstill: no transport; the factors multiply w = 0
+      kappa_y = T(0.0);
+      lambda = T(1.0 / kv_);
+    }
+    const T conv_y = kappa_y * w * inv_L_;  // convective (transport) term of eq 38
+    z_dot[kZy] = k.lateral_slip_speed - (c0y + conv_y) * z[kZy];  // eq 38
 
-    // lambda1 r|w| from eq 56 (steady-state ratio, see header) and eq 53.
-    const T lambda = toDouble(w) > 0.0 ? pressure_.lambda(T(L * c0y / w)) : T(1.0 / kv_);
+    TireForces<T> out;
+    if (toDouble(k.longitudinal_slip_speed) == 0.0 && toDouble(z[kZx]) == 0.0) {
+      // Free rolling with a relaxed longitudinal bristle: eq 38 keeps z~x = 0 exactly; skip it.
+      z_dot[kZx] = T(0.0);
+      out.longitudinal_force = T(0.0);
+    } else {
+      const T c0x = c_.sigma0x * v_r / g_(v_r);
+      const T conv_x = kappa(c0x, w) * w * inv_L_;
+      z_dot[kZx] = k.longitudinal_slip_speed - (c0x + conv_x) * z[kZx];  // eq 38
+      out.longitudinal_force = c_.sigma0x * z[kZx] + c_.sigma1 * z_dot[kZx] + c_.sigma2 * k.longitudinal_slip_speed;
+    }
+
+    // lambda1 r|w| from eq 56 (steady-state ratio, see header).
     T lambda1_w = lambda * w;
     if (lambda2_ != 0.0) {
       const T d = c0y + conv_y;  // > 0 whenever w > 0
-      const T ratio = toDouble(d) > 0.0 ? ((2.0 / L) * (1.0 - lambda2_) * w / d + kv_) / ((2.0 / L) * w / d + kv_)
+      const T ratio = toDouble(d) > 0.0 ? (2.0 * inv_L_ * (1.0 - lambda2_) * w / d + kv_) / (2.0 * inv_L_ * w / d + kv_)
                                          : T(1.0);
-      lambda1_w = (L / 2.0) * (ratio * (c0y + 2.0 * lambda * w / L) - c0y);
+      lambda1_w = (0.5 * L) * (ratio * (c0y + 2.0 * lambda * w * inv_L_) - c0y);
     }
-    z_dot[kPsi] = kv_ * k.lateral_slip_speed - (c0y + 2.0 * lambda1_w / L) * z[kPsi] +
-                  (2.0 / L) * (1.0 - lambda2_) * w * z[kZy];  // eq 51
+    z_dot[kPsi] = kv_ * k.lateral_slip_speed - (c0y + 2.0 * inv_L_ * lambda1_w) * z[kPsi] +
+                  2.0 * inv_L_ * (1.0 - lambda2_) * w * z[kZy];  // eq 51
 
-    TireForces<T> out;
-    out.longitudinal_force = c_.sigma0x * z[kZx] + c_.sigma1 * z_dot[kZx] + c_.sigma2 * k.longitudinal_slip_speed;
     out.lateral_force = c_.sigma0y * z[kZy] + c_.sigma1 * z_dot[kZy] + c_.sigma2 * k.lateral_slip_speed;  // eq 34b
     out.aligning_moment = (L / 2.0) * (c_.sigma0y * (z[kZy] - z[kPsi]) + c_.sigma1 * (z_dot[kZy] - z_dot[kPsi]) +
                                        (1.0 - kv_) * c_.sigma2 * k.lateral_slip_speed);  // eq 45
@@ -102,6 +121,8 @@ class LugreLumpedTire {
   double kappa_constant_;
   double lambda2_;
   double kv_;
+  double inv_L_;
+  double sigma0y_over_g_;  ///< sigma0y / g when g is constant (mu_s = mu_k), else 0
 };
 
 }  // namespace lane_keeping

@@ -30,6 +30,9 @@ class SlidingFriction {
     return normal_load_ * (mu_k_ + (mu_s_ - mu_k_) * exp(-pow(slip_speed / v_s_, exponent_)));
   }
 
+  /// True when g does not depend on the slip speed (mu_s = mu_k).
+  bool isConstant() const { return mu_s_ == mu_k_; }
+  double constantValue() const { return normal_load_ * mu_k_; }
   double normalLoad() const { return normal_load_; }
   double staticCoefficient() const { return mu_s_; }
   double kineticCoefficient() const { return mu_k_; }

@@ -62,7 +62,7 @@ class SingleTrackModel {
     using std::cos;
     using std::sin;
     const double l = p_.wheelbase, d = p_.cg_to_rear_axle, b = l - d, V = p_.speed;
-    const double m = p_.mass, mF = p_.steering_mass, JG = p_.yaw_inertia, JF = p_.steering_inertia;
+    const double m = p_.mass, mF = p_.steering_mass, JG = p_.yaw_inertia;
     const T& psi = x[kPsi];
     const T& delta = x[kDelta];
     const T& s1 = x[kSigma1];
@@ -88,7 +88,7 @@ class SingleTrackModel {
     // Eq 8: slip angles at the leading points Q (front) and P (rear).
     const double aF = front_.contactHalfLength(), aR = rear_.contactHalfLength();
     ContactKinematics<T> kf, kr;
-    kf.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c / V + tan_d;
+    kf.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c * inv_V_ + tan_d;
     kf.wheel_speed = T(V);
     kf.lateral_slip_speed = V * tan_d - front_lateral * inv_c;  // -(lateral velocity of F across the wheel)
     kf.yaw_rate = s2 + s3;
@@ -118,11 +118,11 @@ class SingleTrackModel {
     const T mixed = (mF + m * s * s) * inv_c2;
     const T m12 = mixed * b;
     const T m22_minus_JF = JG + mixed * b * b;
-    const T det = m11 * m22_minus_JF - m12 * m12;
+    const T inv_det = 1.0 / (m11 * m22_minus_JF - m12 * m12);
     const T rhs2 = f2 - f3;
-    const T s1_dot = (f1 * m22_minus_JF - m12 * rhs2) / det;
-    const T s2_dot = (m11 * rhs2 - m12 * f1) / det;
-    const T s3_dot = f3 / JF - s2_dot;
+    const T s1_dot = (f1 * m22_minus_JF - m12 * rhs2) * inv_det;
+    const T s2_dot = (m11 * rhs2 - m12 * f1) * inv_det;
+    const T s3_dot = f3 * inv_JF_ - s2_dot;
     x_dot[kSigma1] = s1_dot;
     x_dot[kSigma2] = s2_dot;
     x_dot[kSigma3] = s3_dot;
@@ -146,6 +146,8 @@ class SingleTrackModel {
   VehicleParams p_;
   Tire front_;
   Tire rear_;
+  double inv_V_;   ///< 1 / V
+  double inv_JF_;  ///< 1 / J_F
 };
 
 /// Builds the model of a configuration: static axle loads (DESIGN §3) and one tire per axle.

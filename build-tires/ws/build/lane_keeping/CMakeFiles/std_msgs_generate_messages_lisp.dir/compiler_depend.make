@@ -1,0 +1,2 @@
+# Empty custom commands generated dependencies file for std_msgs_generate_messages_lisp.
+# This may be replaced when dependencies are built.

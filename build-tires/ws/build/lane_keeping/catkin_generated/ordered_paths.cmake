@@ -1,0 +1,1 @@
+set(ORDERED_PATHS "/usr/lib/x86_64-linux-gnu")

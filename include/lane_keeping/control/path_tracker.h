@@ -1,0 +1,31 @@
+#pragma once
+/// Higher-level controller (Beregi eq 11, generalised to any path through e_y, e_psi):
+///   delta_des(t)     = -k_psi sin(e_psi(t - tau1)) - k_y e_y(t - tau1)
+///   delta_des_dot(t) = -k_psi cos(e_psi) e_psi_dot - k_y e_y_dot      (all at t - tau1)
+/// The rate is the exact derivative from the delayed velocities, not a finite difference.
+/// The delay itself is the input delay line's business; this class maps one pose to a command.
+#include <memory>
+
+#include "lane_keeping/control/path.h"
+#include "lane_keeping/control/tracker_params.h"
+#include "lane_keeping/sim/signals.h"
+
+namespace lane_keeping {
+
+class PathTracker {
+ public:
+  PathTracker(const TrackerParams& params, std::shared_ptr<const Path> path)
+      : params_(params), path_(std::move(path)) {}
+
+  /// Command from the (already delayed) vehicle state; `errors` receives e_y, e_psi if non-null.
+  SteeringCommand command(const PoseSample& pose, PathErrors* errors = nullptr) const;
+
+  const TrackerParams& params() const { return params_; }
+  const Path& path() const { return *path_; }
+
+ private:
+  TrackerParams params_;
+  std::shared_ptr<const Path> path_;
+};
+
+}  // namespace lane_keeping

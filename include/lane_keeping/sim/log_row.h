@@ -1,0 +1,29 @@
+#pragma once
+/// One row of the run log (DESIGN §5 columns first, then extras), and the CSV writer/reader.
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include "lane_keeping/sim/signals.h"
+
+namespace lane_keeping {
+
+struct LogRow {
+  double t = 0.0;                 ///< [s]
+  VehicleStateSample state;       ///< plant state and outputs at t (torque = M_S acting at t)
+  double delta_des = 0.0;         ///< tracker output at t [rad]
+  double delta_des_rate = 0.0;    ///< [rad/s]
+  double e_y = 0.0, e_psi = 0.0;  ///< errors of the actual (undelayed) state from the path [m, rad]
+  double integral = 0.0;          ///< actuator integral z at the latest actuator sample <= t [rad s]
+};
+
+/// Column names in file order. The first eleven are DESIGN §5's.
+const std::vector<std::string>& logColumns();
+/// Values of a row in logColumns() order.
+std::vector<double> logValues(const LogRow& row);
+
+/// Writes the header and rows (full double precision, so a log can be replayed exactly).
+void writeLogCsv(std::ostream& out, const std::vector<LogRow>& rows);
+void writeLogCsv(const std::string& path, const std::vector<LogRow>& rows);
+
+}  // namespace lane_keeping

@@ -1,0 +1,51 @@
+#include "lane_keeping/sim/log_row.h"
+
+#include <cstdio>
+#include <fstream>
+#include <ostream>
+
+#include "lane_keeping/common/errors.h"
+
+namespace lane_keeping {
+
+const std::vector<std::string>& logColumns() {
+  static const std::vector<std::string> columns{
+      "t",        "x",        "y",        "psi",       "yaw_rate",  "v",           "ay",
+      "delta",    "delta_rate", "delta_des", "torque",  "sigma1",    "delta_des_rate", "e_y",
+      "e_psi",    "alpha_f",  "alpha_r",  "force_f",   "force_r",   "moment_f",    "moment_r",
+      "integral"};
+  return columns;
+}
+
+std::vector<double> logValues(const LogRow& r) {
+  const VehicleStateSample& s = r.state;
+  return {r.t,       s.x,        s.y,        s.psi,       s.sigma2,          s.speed,
+          s.lateral_acceleration, s.delta, s.sigma3, r.delta_des, s.torque,   s.sigma1,
+          r.delta_des_rate, r.e_y, r.e_psi, s.slip_angle_front, s.slip_angle_rear, s.force_front,
+          s.force_rear, s.moment_front, s.moment_rear, r.integral};
+}
+
+void writeLogCsv(std::ostream& out, const std::vector<LogRow>& rows) {
+  const auto& columns = logColumns();
+  for (std::size_t i = 0; i < columns.size(); ++i) out << (i ? "," : "") << columns[i];
+  out << "\n";
+  char buffer[32];
+  for (const auto& row : rows) {
+    const std::vector<double> values = logValues(row);
+    for (std::size_t i = 0; i < values.size(); ++i) {
+      std::snprintf(buffer, sizeof(buffer), "%.17g", values[i]);
+      if (i) out << ',';
+      out << buffer;
+    }
+    out << "\n";
+  }
+}
+
+void writeLogCsv(const std::string& path, const std::vector<LogRow>& rows) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path + ": cannot open for writing");
+  writeLogCsv(out, rows);
+  if (!out) throw InputError(path + ": write failed");
+}
+
+}  // namespace lane_keeping

@@ -1,0 +1,208 @@
+#include "lane_keeping/control/path.h"
+
+#include <cmath>
+
+#include <Eigen/Dense>
+
+#include "lane_keeping/common/errors.h"
+
+namespace lane_keeping {
+namespace {
+
+double wrapAngle(double angle) {
+  double wrapped = std::remainder(angle, 2.0 * M_PI);
+  if (wrapped <= -M_PI) wrapped += 2.0 * M_PI;
+  return wrapped;
+}
+
+/// Quintic smoothstep on [0, 1] (C2: position, slope and curvature continuous) and derivatives.
+void smoothstep(double u, double* value, double* d1, double* d2) {
+  if (u <= 0.0) {
+    *value = 0.0; *d1 = 0.0; *d2 = 0.0;
+    return;
+  }
+  if (u >= 1.0) {
+    *value = 1.0; *d1 = 0.0; *d2 = 0.0;
+    return;
+  }
+  const double u2 = u * u, u3 = u2 * u;
+  *value = u3 * (10.0 - 15.0 * u + 6.0 * u2);
+  *d1 = 30.0 * u2 * (1.0 - u) * (1.0 - u);
+  *d2 = 60.0 * u * (1.0 - u) * (1.0 - 2.0 * u);
+}
+
+class StraightPath : public Path {
+ public:
+  void evaluate(double, double* y, double* slope, double* second) const override {
+    *y = 0.0; *slope = 0.0; *second = 0.0;
+  }
+};
+
+class LaneChangePath : public Path {
+ public:
+  LaneChangePath(double start, double length, double offset) : start_(start), length_(length), offset_(offset) {}
+  void evaluate(double x, double* y, double* slope, double* second) const override {
+    double s, d1, d2;
+    smoothstep((x - start_) / length_, &s, &d1, &d2);
+    *y = offset_ * s;
+    *slope = offset_ * d1 / length_;
+    *second = offset_ * d2 / (length_ * length_);
+  }
+
+ private:
+  double start_, length_, offset_;
+};
+
+class SinusoidPath : public Path {
+ public:
+  SinusoidPath(double amplitude, double wavelength, double start)
+      : amplitude_(amplitude), wavelength_(wavelength), start_(start) {}
+  void evaluate(double x, double* y, double* slope, double* second) const override {
+    // y = A w(x) sin(k (x - x0)), w = smoothstep((x - x0) / wavelength) fades the amplitude in.
+    const double k = 2.0 * M_PI / wavelength_;
+    double w, w1, w2;
+    smoothstep((x - start_) / wavelength_, &w, &w1, &w2);
+    w1 /= wavelength_;
+    w2 /= wavelength_ * wavelength_;
+    const double phase = k * (x - start_);
+    const double sn = std::sin(phase), cs = std::cos(phase);
+    *y = amplitude_ * w * sn;
+    *slope = amplitude_ * (w1 * sn + w * k * cs);
+    *second = amplitude_ * (w2 * sn + 2.0 * w1 * k * cs - w * k * k * sn);
+  }
+
+ private:
+  double amplitude_, wavelength_, start_;
+};
+
+/// Natural cubic spline y(x) through the waypoints; straight lines along the end tangents beyond.
+class WaypointPath : public Path {
+ public:
+  explicit WaypointPath(const std::vector<Point2>& points) {
+    const int n = static_cast<int>(points.size());
+    x_.resize(n);
+    y_.resize(n);
+    for (int i = 0; i < n; ++i) {
+      x_[i] = points[i][0];
+      y_[i] = points[i][1];
+    }
+    // Second derivatives M_i: tridiagonal system with M_0 = M_(n-1) = 0 (natural spline).
+    m_.assign(n, 0.0);
+    if (n > 2) {
+      Eigen::MatrixXd A = Eigen::MatrixXd::Zero(n - 2, n - 2);
+      Eigen::VectorXd rhs(n - 2);
+      for (int i = 1; i < n - 1; ++i) {
+        const double h0 = x_[i] - x_[i - 1], h1 = x_[i + 1] - x_[i];
+        const int r = i - 1;
+        A(r, r) = (h0 + h1) / 3.0;
+        if (r > 0) A(r, r - 1) = h0 / 6.0;
+        if (r < n - 3) A(r, r + 1) = h1 / 6.0;
+        rhs[r] = (y_[i + 1] - y_[i]) / h1 - (y_[i] - y_[i - 1]) / h0;
+      }
+      const Eigen::VectorXd m = A.partialPivLu().solve(rhs);
+      for (int i = 1; i < n - 1; ++i) m_[i] = m[i - 1];
+    }
+  }
+
+  void evaluate(double x, double* y, double* slope, double* second) const override {
+    const int n = static_cast<int>(x_.size());
+    if (x <= x_.front() || x >= x_.back()) {
+      const int i = x <= x_.front() ? 0 : n - 2;
+      const double xe = x <= x_.front() ? x_.front() : x_.back();
+      double ye, se, unused;
+      segment(i, xe, &ye, &se, &unused);
+      *y = ye + se * (x - xe);
+      *slope = se;
+      *second = 0.0;
+      return;
+    }
+    int lo = 0, hi = n - 1;
+    while (hi - lo > 1) {
+      const int mid = (lo + hi) / 2;
+      (x_[mid] <= x ? lo : hi) = mid;
+    }
+    segment(lo, x, y, slope, second);
+  }
+
+ private:
+  void segment(int i, double x, double* y, double* slope, double* second) const {
+    const double h = x_[i + 1] - x_[i];
+    const double a = (x_[i + 1] - x) / h, b = (x - x_[i]) / h;
+    *y = a * y_[i] + b * y_[i + 1] + ((a * a * a - a) * m_[i] + (b * b * b - b) * m_[i + 1]) * h * h / 6.0;
+    *slope = (y_[i + 1] - y_[i]) / h - (3.0 * a * a - 1.0) / 6.0 * h * m_[i] + (3.0 * b * b - 1.0) / 6.0 * h * m_[i + 1];
+    *second = a * m_[i] + b * m_[i + 1];
+  }
+
+  std::vector<double> x_, y_, m_;
+};
+
+}  // namespace
+
+double Path::project(double px, double py) const {
+  // g(x) = (x - px) + (f - py) f' is the derivative of half the squared distance. Newton from
+  // x = px, kept inside a bracket where g changes sign (bisection when Newton leaves it).
+  auto g = [&](double x, double* dg) {
+    double f, f1, f2;
+    evaluate(x, &f, &f1, &f2);
+    if (dg) *dg = 1.0 + f1 * f1 + (f - py) * f2;
+    return (x - px) + (f - py) * f1;
+  };
+  double f0, f1, f2;
+  evaluate(px, &f0, &f1, &f2);
+  const double reach = std::fabs(py - f0) + 1.0;
+  double lo = px - reach, hi = px + reach;
+  double glo = g(lo, nullptr), ghi = g(hi, nullptr);
+  for (int widen = 0; glo > 0.0 && widen < 40; ++widen) glo = g(lo -= reach, nullptr);
+  for (int widen = 0; ghi < 0.0 && widen < 40; ++widen) ghi = g(hi += reach, nullptr);
+  double x = px;
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    double dg;
+    const double gx = g(x, &dg);
+    if (gx == 0.0) return x;
+    if (gx < 0.0) lo = x; else hi = x;
+    double next = dg > 0.0 ? x - gx / dg : 0.5 * (lo + hi);
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (std::fabs(next - x) <= 1e-13 * (1.0 + std::fabs(x))) return next;
+    x = next;
+  }
+  return x;
+}
+
+PathErrors Path::errors(double px, double py, double psi, double vx, double vy, double psi_dot) const {
+  PathErrors e;
+  const double xf = project(px, py);
+  double f, f1, f2;
+  evaluate(xf, &f, &f1, &f2);
+  const double norm = std::sqrt(1.0 + f1 * f1);
+  const double tx = 1.0 / norm, ty = f1 / norm;  // unit tangent
+  const double nx = -ty, ny = tx;                 // unit normal, to the left
+  e.foot_x = xf;
+  e.curvature = f2 / (norm * norm * norm);
+  e.lateral = (px - xf) * nx + (py - f) * ny;
+  e.heading = wrapAngle(psi - std::atan(f1));
+  const double s_dot = (vx * tx + vy * ty) / (1.0 - e.curvature * e.lateral);
+  e.lateral_rate = vx * nx + vy * ny;
+  e.heading_rate = psi_dot - e.curvature * s_dot;
+  return e;
+}
+
+std::shared_ptr<const Path> createPath(const PathParams& params) {
+  if (params.type == "straight") return std::make_shared<StraightPath>();
+  if (params.type == "lane_change") {
+    return std::make_shared<LaneChangePath>(params.lane_change_start, params.lane_change_length,
+                                            params.lane_change_offset);
+  }
+  if (params.type == "sinusoid") {
+    return std::make_shared<SinusoidPath>(params.sinusoid_amplitude, params.sinusoid_wavelength,
+                                          params.sinusoid_start);
+  }
+  if (params.type == "waypoints") {
+    std::vector<ConfigProblem> problems;
+    params.validate("path.", problems);
+    if (!problems.empty()) throw ConfigError(problems);
+    return std::make_shared<WaypointPath>(params.waypoints);
+  }
+  throw ConfigError("path.type '" + params.type + "' is unknown; allowed: straight, lane_change, sinusoid, waypoints");
+}
+
+}  // namespace lane_keeping

@@ -1,0 +1,68 @@
+#include "lane_keeping/sim/vehicle_plant.h"
+
+#include <cmath>
+
+namespace lane_keeping {
+
+VehiclePlant::VehiclePlant(SingleTrackModel model, const InitialState& initial, Nanoseconds step,
+                           Nanoseconds torque_delay, Hold hold, Nanoseconds actuator_period)
+    : model_(std::move(model)),
+      x_(model_.initialState(initial)),
+      h_(step),
+      hold_(hold),
+      torque_line_("steering torque -> plant", torque_delay, hold, actuator_period),
+      rk4_(model_.stateSize()),
+      x_dot_at_sample_(model_.stateSize()) {
+  if (step <= 0 || step % 2 != 0) throw ConfigError("simulation.step must be a positive, even number of nanoseconds");
+  refresh(0.0);
+}
+
+void VehiclePlant::refresh(double torque) {
+  model_.derivative(x_.data(), torque, x_dot_at_sample_.data(), &outputs_);
+  sample_torque_ = torque;
+}
+
+VehicleStateSample VehiclePlant::sample() const {
+  VehicleStateSample s;
+  s.x = x_[kX];
+  s.y = x_[kY];
+  s.psi = x_[kPsi];
+  s.delta = x_[kDelta];
+  s.sigma1 = x_[kSigma1];
+  s.sigma2 = x_[kSigma2];
+  s.sigma3 = x_[kSigma3];
+  s.x_dot = outputs_.x_dot;
+  s.y_dot = outputs_.y_dot;
+  s.speed = std::hypot(outputs_.longitudinal_velocity, x_[kSigma1]);
+  s.lateral_acceleration = outputs_.lateral_acceleration;
+  s.slip_angle_front = std::atan(outputs_.tan_slip_front);
+  s.slip_angle_rear = std::atan(outputs_.tan_slip_rear);
+  s.force_front = outputs_.front.lateral_force;
+  s.force_rear = outputs_.rear.lateral_force;
+  s.moment_front = outputs_.front.aligning_moment;
+  s.moment_rear = outputs_.rear.aligning_moment;
+  s.torque = sample_torque_;
+  return s;
+}
+
+void VehiclePlant::step() {
+  const Nanoseconds half = h_ / 2;
+  const double u0 = torque_line_.at(t_).torque;
+  double um = u0, u1 = u0;
+  if (hold_ == Hold::kLinear) {
+    um = torque_line_.at(t_ + half).torque;
+    u1 = torque_line_.at(t_ + h_).torque;
+  }
+  const double inputs[4] = {u0, um, um, u1};
+  auto f = [&](int stage, const Eigen::VectorXd& x, Eigen::VectorXd& x_dot) {
+    model_.derivative(x.data(), inputs[stage], x_dot.data());
+  };
+  // f(x_, u0) is already known when the torque at t equals the one the sample was refreshed with.
+  const Eigen::VectorXd* k1 = (u0 == sample_torque_) ? &x_dot_at_sample_ : nullptr;
+  rk4_.step(f, nanosecondsToSeconds(h_), x_, k1);
+  t_ += h_;
+  refresh(u1);
+  torque_line_.discardBefore(t_);
+}
+
+}  // namespace lane_keeping

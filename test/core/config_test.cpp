@@ -1,0 +1,144 @@
+// Configuration: every shipped file loads; default.yaml equals the compiled defaults; bad input gives
+// an error naming the key and the file:line; nothing runs on with NaN.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <dirent.h>
+#include <fstream>
+#include <sstream>
+
+#include "lane_keeping/config/sim_config.h"
+
+namespace lane_keeping {
+namespace {
+
+const std::string kSource = LANE_KEEPING_SOURCE_DIR;
+
+std::string writeTemp(const std::string& name, const std::string& text) {
+  const std::string path = testing::TempDir() + name;
+  std::ofstream(path) << text;
+  return path;
+}
+
+std::string errorOf(const std::vector<std::string>& files, const std::vector<std::string>& sets = {}) {
+  try {
+    loadSimConfig(files, sets);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::vector<std::string> yamlFiles(const std::string& dir) {
+  std::vector<std::string> files;
+  if (DIR* d = opendir(dir.c_str())) {
+    while (dirent* entry = readdir(d)) {
+      const std::string name = entry->d_name;
+      if (name.size() > 5 && name.substr(name.size() - 5) == ".yaml") files.push_back(dir + "/" + name);
+    }
+    closedir(d);
+  }
+  return files;
+}
+
+TEST(ConfigFiles, EveryShippedConfigLoadsAndValidates) {
+  auto files = yamlFiles(kSource + "/config");
+  const auto scenarios = yamlFiles(kSource + "/config/scenarios");
+  files.insert(files.end(), scenarios.begin(), scenarios.end());
+  ASSERT_GE(files.size(), 7u);
+  for (const auto& file : files) {
+    SCOPED_TRACE(file);
+    EXPECT_NO_THROW(loadSimConfig({file}));
+  }
+}
+
+TEST(ConfigFiles, DefaultYamlEqualsCompiledDefaults) {
+  std::ostringstream compiled, loaded;
+  SimConfig{}.print(compiled);
+  loadSimConfig({kSource + "/config/default.yaml"}).print(loaded);
+  EXPECT_EQ(compiled.str(), loaded.str());
+}
+
+TEST(ConfigErrors, NegativeMassNamesKeyFileAndLine) {
+  const std::string file = writeTemp("neg_mass.yaml", "vehicle:\n  wheelbase: 2.57\n  mass: -1100\n");
+  const std::string error = errorOf({file});
+  EXPECT_NE(error.find("vehicle.mass"), std::string::npos) << error;
+  EXPECT_NE(error.find("neg_mass.yaml:3"), std::string::npos) << error;
+  EXPECT_NE(error.find("must be > 0 kg"), std::string::npos) << error;
+}
+
+TEST(ConfigErrors, ZeroSpeed) {
+  const std::string error = errorOf({}, {"vehicle.speed=0"});
+  EXPECT_NE(error.find("vehicle.speed"), std::string::npos) << error;
+  EXPECT_NE(error.find("--set"), std::string::npos) << error;
+}
+
+TEST(ConfigErrors, NanGain) {
+  const std::string file = writeTemp("nan_gain.yaml", "tracker:\n  k_y: .nan\n");
+  const std::string error = errorOf({file});
+  EXPECT_NE(error.find("tracker.k_y"), std::string::npos) << error;
+  EXPECT_NE(error.find("nan"), std::string::npos) << error;
+  EXPECT_NE(error.find("nan_gain.yaml:2"), std::string::npos) << error;
+}
+
+TEST(ConfigErrors, UnknownTireModelListsTheAllowedOnes) {
+  const std::string error = errorOf({}, {"tire.rear.model=pacejka2002"});
+  EXPECT_NE(error.find("tire.rear.model"), std::string::npos) << error;
+  EXPECT_NE(error.find("lugre_lumped"), std::string::npos) << error;
+}
+
+TEST(ConfigErrors, MissingFile) {
+  const std::string error = errorOf({"/nonexistent/lk.yaml"});
+  EXPECT_NE(error.find("/nonexistent/lk.yaml"), std::string::npos) << error;
+  EXPECT_NE(error.find("cannot open"), std::string::npos) << error;
+}
+
+TEST(ConfigErrors, MalformedYamlNamesLine) {
+  const std::string file = writeTemp("broken.yaml", "vehicle:\n  mass: 1100\n  speed: [15\ntracker:\n  k_y: 0.1\n");
+  const std::string error = errorOf({file});
+  EXPECT_NE(error.find("broken.yaml:"), std::string::npos) << error;
+  EXPECT_NE(error.find("malformed YAML"), std::string::npos) << error;
+}
+
+TEST(ConfigErrors, UnknownKeyAndTypeErrorsAreAllReported) {
+  const std::string file = writeTemp("typos.yaml", "tracker:\n  k_yy: 0.1\n  k_psi: fast\nvehicle:\n  mass: 0\n");
+  const std::string error = errorOf({file});
+  EXPECT_NE(error.find("tracker.k_yy"), std::string::npos) << error;
+  EXPECT_NE(error.find("not a known parameter"), std::string::npos) << error;
+  EXPECT_NE(error.find("tracker.k_psi"), std::string::npos) << error;
+  EXPECT_NE(error.find("typos.yaml:3"), std::string::npos) << error;
+}
+
+TEST(ConfigErrors, CrossFieldRules) {
+  EXPECT_NE(errorOf({}, {"vehicle.cg_to_rear_axle=3.0"}).find("smaller than vehicle.wheelbase"), std::string::npos);
+  EXPECT_NE(errorOf({}, {"tire.front.model=lugre_distributed", "tire.front.lugre.bristles=2000"})
+                .find("RK4's stability limit"),
+            std::string::npos);
+  EXPECT_NE(errorOf({}, {"simulation.step=1.5e-9"}).find("even number of nanoseconds"), std::string::npos);
+}
+
+TEST(ConfigErrors, SimulateExitsWithStatus2AndTheMessage) {
+  const std::string out = testing::TempDir() + "lk_err.txt";
+  const int status = std::system((std::string(LK_SIMULATE_BIN) + " --set vehicle.mass=-1 2>" + out + " >/dev/null").c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 2);
+  std::ifstream in(out);
+  std::stringstream text;
+  text << in.rdbuf();
+  EXPECT_NE(text.str().find("vehicle.mass"), std::string::npos) << text.str();
+}
+
+TEST(CoreLibrary, HasNoRosInclude) {
+  // House rule 1: the core builds and is tested without roscpp.
+  const std::string command = "grep -rlE '#include [<\"](ros/|ros\\.h|nodelet|tf2_ros|rosbag)' " + kSource +
+                              "/src/core " + kSource + "/include/lane_keeping";
+  FILE* pipe = popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  char buffer[512];
+  std::string hits;
+  while (fgets(buffer, sizeof(buffer), pipe)) hits += buffer;
+  pclose(pipe);
+  EXPECT_EQ(hits, "") << "ROS includes in the core: " << hits;
+}
+
+}  // namespace
+}  // namespace lane_keeping
