@@ -5,6 +5,7 @@
 #include "lane_keeping/control/path.h"
 #include "lane_keeping/sim/control_stages.h"
 #include "lane_keeping/sim/divergence_monitor.h"
+#include "lane_keeping/sim/model_factory.h"
 #include "lane_keeping/sim/vehicle_plant.h"
 
 namespace lane_keeping {
@@ -53,7 +54,7 @@ RunResult runLoop(const SimConfig& c, Nanoseconds end, const std::function<void(
                   bool record_rows) {
   const Schedule s = scheduleOf(c);
   const auto path = createPath(c.path);
-  VehiclePlant plant(createVehicleModel(c.vehicle, c.tire_front, c.tire_rear), c.simulation.initial, s.plant_step,
+  VehiclePlant plant(createVehicleModel(c), c.simulation.initial, s.plant_step,
                      s.torque_delay, s.hold, s.actuator_period);
   PathTrackingStage tracker(PathTracker(c.tracker, path), s.tracker_period, s.pose_delay, s.hold, s.plant_step);
   SteeringActuatorStage actuator(SteeringActuator(c.actuator), s.actuator_period, s.desired_delay, s.measured_delay,

@@ -9,6 +9,8 @@ namespace lane_keeping {
 
 void SimConfig::visit(ParamVisitor& v) {
   vehicle.visit(v, "vehicle.");
+  steering.visit(v, "steering.");
+  disturbance.visit(v, "disturbance.");
   tire_front.visit(v, "tire.front.");
   tire_rear.visit(v, "tire.rear.");
   path.visit(v, "path.");
@@ -51,6 +53,11 @@ std::vector<ConfigProblem> SimConfig::problems() const {
   tire_rear.validate("tire.rear.", problems);
   path.validate("path.", problems);
   simulation.validate("simulation.", problems);
+  if (steering.friction_model == "lugre" && steering.breakaway_friction > 0.0 && steering.coulomb_friction <= 0.0) {
+    problems.push_back({"steering.coulomb_friction", "",
+                        "must be > 0 N m with steering.friction_model = lugre and a breakaway friction "
+                        "(g of Deur eq 6 must stay positive)"});
+  }
   checkDistributedTireStep(tire_front, "tire.front.", vehicle.speed, simulation.step, problems);
   checkDistributedTireStep(tire_rear, "tire.rear.", vehicle.speed, simulation.step, problems);
   return problems;

@@ -3,7 +3,18 @@
 namespace lane_keeping {
 
 SingleTrackModel::SingleTrackModel(const VehicleParams& params, Tire front, Tire rear)
-    : p_(params), front_(std::move(front)), rear_(std::move(rear)), inv_V_(1.0 / params.speed),
+    : SingleTrackModel(params, SteeringParams{}, DisturbanceParams{}, std::move(front), std::move(rear)) {}
+
+SingleTrackModel::SingleTrackModel(const VehicleParams& params, const SteeringParams& steering,
+                                   const DisturbanceParams& disturbance, Tire front, Tire rear)
+    : p_(params),
+      steering_(steering),
+      disturbance_(disturbance),
+      plain_steering_(steering.torque_limit == 0.0 && steering.dead_band == 0.0 && !steering.hasFriction() &&
+                      !steering.compliant()),
+      front_(std::move(front)),
+      rear_(std::move(rear)),
+      inv_V_(1.0 / params.speed),
       inv_JF_(1.0 / params.steering_inertia) {}
 
 Eigen::VectorXd SingleTrackModel::initialState(const InitialState& initial) const {
@@ -15,6 +26,7 @@ Eigen::VectorXd SingleTrackModel::initialState(const InitialState& initial) cons
   x[kSigma1] = initial.sigma1;
   x[kSigma2] = initial.sigma2;
   x[kSigma3] = initial.sigma3;
+  if (steering_.compliant()) x[steeringStateOffset()] = initial.delta;  // relaxed column
   return x;
 }
 
@@ -31,7 +43,14 @@ Eigen::Matrix3d SingleTrackModel::massMatrix(double delta) const {
 }
 
 SingleTrackModel createVehicleModel(const VehicleParams& vehicle, const TireParams& front, const TireParams& rear) {
-  return SingleTrackModel(vehicle, createTire(front, vehicle.frontAxleLoad()), createTire(rear, vehicle.rearAxleLoad()));
+  return createVehicleModel(vehicle, SteeringParams{}, DisturbanceParams{}, front, rear);
+}
+
+SingleTrackModel createVehicleModel(const VehicleParams& vehicle, const SteeringParams& steering,
+                                    const DisturbanceParams& disturbance, const TireParams& front,
+                                    const TireParams& rear) {
+  return SingleTrackModel(vehicle, steering, disturbance, createTire(front, vehicle.frontAxleLoad()),
+                          createTire(rear, vehicle.rearAxleLoad()));
 }
 
 }  // namespace lane_keeping

@@ -4,8 +4,13 @@
 
 namespace lane_keeping {
 
-Tire::Tire(std::string name, Model model, double normal_load)
-    : name_(std::move(name)), model_(std::move(model)), normal_load_(normal_load) {}
+Tire::Tire(std::string name, Model model, double normal_load, double relaxation_length)
+    : name_(std::move(name)),
+      model_(std::move(model)),
+      normal_load_(normal_load),
+      relaxation_length_(relaxation_length),
+      inv_relaxation_length_(relaxation_length > 0.0 ? 1.0 / relaxation_length : 0.0),
+      model_states_(modelStateSize()) {}
 
 namespace {
 template <class... Ts>
@@ -16,7 +21,7 @@ template <class... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;
 }  // namespace
 
-int Tire::stateSize() const {
+int Tire::modelStateSize() const {
   return std::visit(Overloaded{[](const LugreDistributedTire& m) { return m.stateSize(); },
                                [](const auto& m) { return static_cast<int>(std::decay_t<decltype(m)>::kStateSize); }},
                     model_);
@@ -82,20 +87,21 @@ Tire createTire(const TireParams& params, double normal_load) {
   if (params.model == "brush") {
     return Tire(params.model,
                 BrushTire(normal_load, params.contact_half_length, params.lateral_stiffness, params.mu, params.mu0),
-                normal_load);
+                normal_load, params.relaxation_length);
   }
   if (params.model == "lugre_lumped") {
     const double kappa_constant = params.lugre.kappa == "constant" ? params.lugre.kappa_constant : 0.0;
     return Tire(params.model, LugreLumpedTire(coefficients, friction, pressure, kappa_constant, params.lugre.lambda2),
-                normal_load);
+                normal_load, params.relaxation_length);
   }
   if (params.model == "lugre_distributed") {
     return Tire(params.model,
                 LugreDistributedTire(coefficients, friction, pressure, params.lugre.bristles, params.lugre.turn_slip),
-                normal_load);
+                normal_load, params.relaxation_length);
   }
   if (params.model == "magic_formula") {
-    return Tire(params.model, MagicFormulaTire(params.magic_formula, normal_load, params.mu), normal_load);
+    return Tire(params.model, MagicFormulaTire(params.magic_formula, normal_load, params.mu), normal_load,
+                params.relaxation_length);
   }
   throw ConfigError("tire model '" + params.model + "' is unknown; allowed: brush, lugre_lumped, "
                     "lugre_distributed, magic_formula");

@@ -19,6 +19,8 @@ void TireParams::visit(ParamVisitor& v, const std::string& prefix) {
            "k, lateral tread stiffness per unit length (Beregi Table 1)");
   v.number(prefix + "mu", mu, "", Range::positive(), "sliding friction coefficient (brush mu, LuGre mu_k)");
   v.number(prefix + "mu0", mu0, "", Range::positive(), "adhesion friction coefficient (brush mu0, LuGre mu_s)");
+  v.number(prefix + "relaxation_length", relaxation_length, "m", Range::nonNegative(),
+           "first-order relaxation of force and moment, time constant relaxation_length / wheel speed; 0 = none");
 
   const std::string lp = prefix + "lugre.";
   v.optionalNumber(lp + "contact_length", lugre.contact_length, "m", Range::positive(), "L; auto = 2 a");

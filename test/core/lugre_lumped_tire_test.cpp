@@ -238,7 +238,9 @@ TEST(LugreTireWrapper, ForceOpposesSlipAndIsOddForAllModels) {
         EXPECT_LT(fm.lateral_force, 0.0);
         EXPECT_NEAR(fm.lateral_force, -fp.lateral_force, 1e-12 * std::fabs(fp.lateral_force));
         EXPECT_NEAR(fm.aligning_moment, -fp.aligning_moment, 1e-12 * std::fabs(fp.aligning_moment) + 1e-300);
-        if (a <= 2.0) EXPECT_LT(fp.aligning_moment, 0.0);
+        if (a <= 2.0) {
+          EXPECT_LT(fp.aligning_moment, 0.0);
+        }
       }
       const TireForces<double> z = tire.steadyState(deur::pureLateral(0.0, kSpeed));
       EXPECT_EQ(z.lateral_force, 0.0) << model;

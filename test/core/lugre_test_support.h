@@ -11,7 +11,8 @@
 //   M = (v_ry/|v_r|) g L [ (1-K_v)/2 - int_0^1 p(s) e^{-s/rho} (1/2 - s) ds ],
 // whose closed form is identical to the printed 30b (symbolic difference 0; e.g. at r_l = 0.134,
 // r_r = 0.707, rho = 0.2 both give -2 int(...) = -0.0931535447436829). The OCR text is not garbled.
-// Likewise eqs 30a, 31a, 32b, 40-41 and 54 equal the defining integrals (eqs 20, 39, 53) symbolically.
+// Likewise eqs 30a, 31a and 32b equal the defining integrals symbolically, and eqs 40-41 and 54 equal
+// eqs 39 and 53 (evaluated with sympy at 15 digits for rho = 0.02..20).
 #include <cmath>
 #include <functional>
 #include <vector>

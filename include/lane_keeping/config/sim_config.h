@@ -13,12 +13,15 @@
 #include "lane_keeping/sim/delay_params.h"
 #include "lane_keeping/sim/simulation_params.h"
 #include "lane_keeping/tire/tire_params.h"
+#include "lane_keeping/vehicle/steering_params.h"
 #include "lane_keeping/vehicle/vehicle_params.h"
 
 namespace lane_keeping {
 
 struct SimConfig {
   VehicleParams vehicle;
+  SteeringParams steering;
+  DisturbanceParams disturbance;
   TireParams tire_front;
   TireParams tire_rear;
   PathParams path;

@@ -19,16 +19,31 @@ class Tire {
  public:
   using Model = std::variant<BrushTire, LugreLumpedTire, LugreDistributedTire, MagicFormulaTire>;
 
-  Tire(std::string name, Model model, double normal_load);
+  /// @param relaxation_length > 0 adds two states: the force and moment lag behind the model's
+  /// with time constant relaxation_length / r|w| (a relaxation-length tire, Pacejka §7).
+  Tire(std::string name, Model model, double normal_load, double relaxation_length = 0.0);
 
   const std::string& name() const { return name_; }
   double normalLoad() const { return normal_load_; }
-  int stateSize() const;
+  int stateSize() const { return model_states_ + (relaxation_length_ > 0.0 ? 2 : 0); }
+  double relaxationLength() const { return relaxation_length_; }
 
   /// Forces and the state derivative. `state` and `state_dot` hold stateSize() values.
   template <typename T>
   TireForces<T> evaluate(const ContactKinematics<T>& kinematics, const T* state, T* state_dot) const {
-    return std::visit([&](const auto& model) { return model.evaluate(kinematics, state, state_dot); }, model_);
+    const TireForces<T> forces =
+        std::visit([&](const auto& model) { return model.evaluate(kinematics, state, state_dot); }, model_);
+    if (relaxation_length_ <= 0.0) return forces;
+    using std::abs;
+    const T rate = abs(kinematics.wheel_speed) * inv_relaxation_length_;
+    const T& lagged_force = state[model_states_];
+    const T& lagged_moment = state[model_states_ + 1];
+    state_dot[model_states_] = rate * (forces.lateral_force - lagged_force);
+    state_dot[model_states_ + 1] = rate * (forces.aligning_moment - lagged_moment);
+    TireForces<T> out = forces;
+    out.lateral_force = lagged_force;
+    out.aligning_moment = lagged_moment;
+    return out;
   }
 
   /// Forces after the internal states have settled at constant slip (the static curve).
@@ -43,9 +58,14 @@ class Tire {
   const Model& model() const { return model_; }
 
  private:
+  int modelStateSize() const;
+
   std::string name_;
   Model model_;
   double normal_load_;
+  double relaxation_length_;
+  double inv_relaxation_length_;
+  int model_states_;
 };
 
 /// Builds the model named by params.model for an axle carrying `normal_load` [N].

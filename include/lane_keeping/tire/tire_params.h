@@ -45,6 +45,8 @@ struct TireParams {
   double lateral_stiffness = 2.0e6;    ///< k [N/m^2], distributed lateral stiffness (Beregi Table 1)
   double mu = 1.0;                     ///< sliding friction coefficient (brush mu, LuGre mu_k)
   double mu0 = 1.0;                    ///< adhesion friction coefficient (brush mu0, LuGre mu_s)
+  double relaxation_length = 0.0;      ///< [m]; > 0 adds a first-order lag of force and moment (time
+                                       ///< constant relaxation_length / wheel speed); 0 = none
   LugreParams lugre;
   MagicFormulaParams magic_formula;
 

@@ -3,11 +3,13 @@
 /// kinematics (eq 2), Appell-Gibbs dynamics (eqs 3-5), slip angles at the leading points of the
 /// contact patches (eq 8), and the tire of each axle (any model of tire.h).
 ///
-/// State layout: [x, y, psi, delta, sigma1, sigma2, sigma3 | front tire states | rear tire states]
+/// State layout: [x, y, psi, delta, sigma1, sigma2, sigma3 | steering-system states | front tire states |
+///                rear tire states]   (steering-system states only when enabled: see steering_params.h)
 ///   x, y   position of G in map [m];  psi yaw [rad];  delta steering angle [rad]
 ///   sigma1 lateral velocity of G in the body frame [m/s];  sigma2 yaw rate [rad/s];
 ///   sigma3 steering rate [rad/s]  (Beregi's pseudo-velocities)
-/// Input: the steering torque M_S [N m]. The speed V of the front axle along its wheel is held
+/// Input: the steering torque command M_S [N m] (through the steering system of steering_params.h,
+/// which is Beregi's rigid, frictionless f3 = M_F + M_S unless configured otherwise). The speed V of the front axle along its wheel is held
 /// constant by the non-holonomic constraint (eq 1); the traction force that does so is the
 /// constraint force and does not appear.
 ///
@@ -22,6 +24,7 @@
 #include "lane_keeping/common/scalar.h"
 #include "lane_keeping/sim/simulation_params.h"
 #include "lane_keeping/tire/tire.h"
+#include "lane_keeping/vehicle/steering_params.h"
 #include "lane_keeping/vehicle/vehicle_params.h"
 
 namespace lane_keeping {
@@ -42,11 +45,17 @@ struct VehicleOutputs {
 class SingleTrackModel {
  public:
   SingleTrackModel(const VehicleParams& params, Tire front, Tire rear);
+  SingleTrackModel(const VehicleParams& params, const SteeringParams& steering, const DisturbanceParams& disturbance,
+                   Tire front, Tire rear);
 
-  int stateSize() const { return kRigidStateSize + front_.stateSize() + rear_.stateSize(); }
-  int frontTireOffset() const { return kRigidStateSize; }
-  int rearTireOffset() const { return kRigidStateSize + front_.stateSize(); }
+  int stateSize() const { return kRigidStateSize + steering_.stateSize() + front_.stateSize() + rear_.stateSize(); }
+  /// Steering-system states: column angle and rate (if compliant), then the LuGre friction state.
+  int steeringStateOffset() const { return kRigidStateSize; }
+  int frontTireOffset() const { return kRigidStateSize + steering_.stateSize(); }
+  int rearTireOffset() const { return frontTireOffset() + front_.stateSize(); }
   const VehicleParams& params() const { return p_; }
+  const SteeringParams& steering() const { return steering_; }
+  const DisturbanceParams& disturbance() const { return disturbance_; }
   const Tire& frontTire() const { return front_; }
   const Tire& rearTire() const { return rear_; }
 
@@ -104,12 +113,16 @@ class SingleTrackModel {
     const T& MF = tf.aligning_moment;
     const T& MR = tr.aligning_moment;
 
-    // Eq 5: generalised forces.
+    // Eq 5: generalised forces (plus the optional disturbance on the body).
     const T inv_c3 = inv_c * inv_c * inv_c;
     const T steer_term = (mF + m) * s * inv_c3 * (V * s - s1 - b * s2) * s3;
-    const T f1 = FF * inv_c + FR + inv_c * (-(mF + m) * V + m * s2 * b * s) * s2 + steer_term;
-    const T f2 = MF + MR + b * FF * inv_c - d * FR - b * inv_c * (mF * V + m * s1 * s) * s2 + b * steer_term;
-    const T f3 = MF + steering_torque;
+    T f1 = FF * inv_c + FR + inv_c * (-(mF + m) * V + m * s2 * b * s) * s2 + steer_term;
+    T f2 = MF + MR + b * FF * inv_c - d * FR - b * inv_c * (mF * V + m * s1 * s) * s2 + b * steer_term;
+    if (disturbance_.active()) {
+      f1 = f1 + disturbance_.lateral_force;  // a force at G across the body does work on sigma1 only
+      f2 = f2 + disturbance_.yaw_moment;
+    }
+    const T f3 = MF + steeringSystem(x, steering_torque, x_dot);
 
     // Eqs 3-4: solve M sigma_dot = f. Row 3 gives sigma3_dot = f3/JF - sigma2_dot; substituting it
     // leaves a 2x2 system with determinant m11 (m22 - JF) - m12^2 > 0.
@@ -143,14 +156,68 @@ class SingleTrackModel {
   }
 
  private:
+  /// Torque the steering system passes to the front axle (f3 without M_F), and the derivatives of
+  /// its own states. Beregi's rigid, frictionless steering returns the command unchanged.
+  template <typename T>
+  T steeringSystem(const T* x, const T& command, T* x_dot) const {
+    if (plain_steering_) return command;
+    using std::abs;
+    using std::exp;
+    using std::tanh;
+    const SteeringParams& p = steering_;
+    T applied = command;
+    if (p.dead_band > 0.0) {
+      const double cv = toDouble(command);
+      applied = std::fabs(cv) <= p.dead_band ? T(0.0) : T(command - sign(command) * p.dead_band);
+    }
+    if (p.torque_limit > 0.0) {
+      const double av = toDouble(applied);
+      if (av > p.torque_limit) applied = T(p.torque_limit);
+      if (av < -p.torque_limit) applied = T(-p.torque_limit);
+    }
+    const T& rate = x[kSigma3];
+    int next = steeringStateOffset();
+    T transmitted = applied;
+    if (p.compliant()) {
+      const T& column = x[next];
+      const T& column_rate = x[next + 1];
+      transmitted = p.column_stiffness * (column - x[kDelta]) + p.column_damping * (column_rate - rate);
+      x_dot[next] = column_rate;
+      x_dot[next + 1] = (applied - transmitted) / p.column_inertia;
+      next += 2;
+    }
+    T friction(0.0);
+    if (p.lugreFriction()) {
+      // LuGre point friction (Deur eqs 6 and 9) on the steering rate.
+      const T& z = x[next];
+      const double tc = p.coulomb_friction, ts = std::max(p.breakaway_friction, p.coulomb_friction);
+      const T ratio = rate / p.friction_velocity;
+      const T g = tc + (ts - tc) * exp(-ratio * ratio);
+      const T z_dot = rate - p.friction_stiffness * abs(rate) * z / g;
+      x_dot[next] = z_dot;
+      friction = p.friction_stiffness * z + p.friction_damping * z_dot + p.viscous_friction * rate;
+    } else if (p.hasFriction()) {
+      friction = p.coulomb_friction * tanh(rate / p.friction_velocity) + p.viscous_friction * rate;
+    }
+    return transmitted - friction;
+  }
+
   VehicleParams p_;
+  SteeringParams steering_;
+  DisturbanceParams disturbance_;
+  bool plain_steering_;
   Tire front_;
   Tire rear_;
   double inv_V_;   ///< 1 / V
   double inv_JF_;  ///< 1 / J_F
 };
 
-/// Builds the model of a configuration: static axle loads (DESIGN §3) and one tire per axle.
+/// Builds the model of a configuration: static axle loads (DESIGN §3) and one tire per axle; rigid,
+/// frictionless steering and no disturbance (Beregi's model).
 SingleTrackModel createVehicleModel(const VehicleParams& vehicle, const TireParams& front, const TireParams& rear);
+/// Same with a steering system and body disturbance.
+SingleTrackModel createVehicleModel(const VehicleParams& vehicle, const SteeringParams& steering,
+                                    const DisturbanceParams& disturbance, const TireParams& front,
+                                    const TireParams& rear);
 
 }  // namespace lane_keeping

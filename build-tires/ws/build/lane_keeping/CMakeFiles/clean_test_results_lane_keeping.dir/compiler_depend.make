@@ -1,2 +1,0 @@
-# Empty custom commands generated dependencies file for clean_test_results_lane_keeping.
-# This may be replaced when dependencies are built.

@@ -1,2 +1,0 @@
-# Empty custom commands generated dependencies file for roscpp_generate_messages_lisp.
-# This may be replaced when dependencies are built.

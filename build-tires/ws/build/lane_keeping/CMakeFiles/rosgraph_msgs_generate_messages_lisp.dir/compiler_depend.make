@@ -1,2 +1,0 @@
-# Empty custom commands generated dependencies file for rosgraph_msgs_generate_messages_lisp.
-# This may be replaced when dependencies are built.

@@ -1,1 +1,0 @@
-set(ORDERED_PATHS "/usr/lib/x86_64-linux-gnu")

@@ -1,0 +1,79 @@
+#pragma once
+/// The steering system between the actuator's torque command M_S and the front axle (all off by
+/// default, i.e. Beregi's rigid, frictionless steering with f3 = M_F + M_S).
+///  * torque_limit / dead_band: the applied torque is M = sat(M_S) with |M| <= torque_limit, and zero
+///    inside |M_S| < dead_band (the command is shifted by the band outside it).
+///  * friction at the kingpin: tanh model  T_f = T_c tanh(delta_dot / v_f) + b delta_dot, or the
+///    LuGre point model (Deur eqs 6, 9) with one internal state z:
+///      dz/dt = w - sigma0 |w| z / g(w),  g(w) = T_c + (T_s - T_c) exp(-(w / w_s)^2),
+///      T_f = sigma0 z + sigma1 dz/dt + b w,   w = delta_dot.
+///  * compliance: the torque acts on a column of inertia J_c and angle theta (relative to the body),
+///    coupled to the wheel by a torsional spring k_c and damper c_c:
+///      J_c theta'' = M - k_c (theta - delta) - c_c (theta' - delta'),  f3 = M_F + k_c (theta - delta)
+///      + c_c (theta' - delta') - T_f.   (column yaw coupling with the body neglected: J_c << J_G)
+#include <string>
+#include <vector>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/param_visitor.h"
+
+namespace lane_keeping {
+
+struct SteeringParams {
+  double torque_limit = 0.0;        ///< [N m]; 0 = unlimited
+  double dead_band = 0.0;           ///< [N m]; 0 = none
+  std::string friction_model = "tanh";  ///< tanh | lugre
+  double coulomb_friction = 0.0;    ///< T_c [N m]
+  double breakaway_friction = 0.0;  ///< T_s [N m] (lugre; <= T_c means no Stribeck peak)
+  double viscous_friction = 0.0;    ///< b [N m s/rad]
+  double friction_velocity = 0.01;  ///< v_f of tanh, or w_s (Stribeck) of lugre [rad/s]
+  double friction_stiffness = 1e3;  ///< sigma0 of lugre [N m/rad]: presliding g/sigma0 ~ 1 mrad; the state's
+                                    ///< decay rate sigma0 |w| / g must stay within RK4's limit (~2.8 / step)
+  double friction_damping = 0.0;    ///< sigma1 of lugre [N m s/rad]
+  double column_stiffness = 0.0;    ///< k_c [N m/rad]; 0 = rigid column
+  double column_damping = 0.0;      ///< c_c [N m s/rad]
+  double column_inertia = 0.02;     ///< J_c [kg m^2]
+
+  bool hasFriction() const { return coulomb_friction > 0.0 || breakaway_friction > 0.0 || viscous_friction > 0.0; }
+  bool lugreFriction() const { return friction_model == "lugre" && (coulomb_friction > 0.0 || breakaway_friction > 0.0); }
+  bool compliant() const { return column_stiffness > 0.0; }
+  /// Extra states: column angle and rate (compliant), LuGre friction state.
+  int stateSize() const { return (compliant() ? 2 : 0) + (lugreFriction() ? 1 : 0); }
+
+  void visit(ParamVisitor& v, const std::string& prefix) {
+    v.number(prefix + "torque_limit", torque_limit, "N m", Range::nonNegative(),
+             "saturation of the applied steering torque; 0 = unlimited");
+    v.number(prefix + "dead_band", dead_band, "N m", Range::nonNegative(), "torque dead band; 0 = none");
+    v.choice(prefix + "friction_model", friction_model, {"tanh", "lugre"},
+             "kingpin friction: tanh (Coulomb smoothed + viscous) or lugre (Deur eq 9, one state)");
+    v.number(prefix + "coulomb_friction", coulomb_friction, "N m", Range::nonNegative(), "T_c, Coulomb friction torque");
+    v.number(prefix + "breakaway_friction", breakaway_friction, "N m", Range::nonNegative(),
+             "T_s, breakaway (static) friction torque of the lugre model");
+    v.number(prefix + "viscous_friction", viscous_friction, "N m s/rad", Range::nonNegative(), "b, viscous friction");
+    v.number(prefix + "friction_velocity", friction_velocity, "rad/s", Range::positive(),
+             "tanh smoothing velocity, or Stribeck velocity of the lugre model");
+    v.number(prefix + "friction_stiffness", friction_stiffness, "N m/rad", Range::positive(),
+             "sigma0 of the lugre friction model");
+    v.number(prefix + "friction_damping", friction_damping, "N m s/rad", Range::nonNegative(),
+             "sigma1 of the lugre friction model");
+    v.number(prefix + "column_stiffness", column_stiffness, "N m/rad", Range::nonNegative(),
+             "k_c, torsional stiffness between actuator and wheel; 0 = rigid");
+    v.number(prefix + "column_damping", column_damping, "N m s/rad", Range::nonNegative(), "c_c, column damping");
+    v.number(prefix + "column_inertia", column_inertia, "kg m^2", Range::positive(), "J_c, actuator-side inertia");
+  }
+};
+
+/// External loads on the car body (wind, road bank): a lateral force at G and a yaw moment.
+struct DisturbanceParams {
+  double lateral_force = 0.0;  ///< [N], body y at G, left positive
+  double yaw_moment = 0.0;     ///< [N m], counter-clockwise positive
+
+  bool active() const { return lateral_force != 0.0 || yaw_moment != 0.0; }
+  void visit(ParamVisitor& v, const std::string& prefix) {
+    v.number(prefix + "lateral_force", lateral_force, "N", Range::any(),
+             "constant lateral force at G in the body frame (crosswind, road bank), left positive");
+    v.number(prefix + "yaw_moment", yaw_moment, "N m", Range::any(), "constant yaw moment on the body");
+  }
+};
+
+}  // namespace lane_keeping
