@@ -8,7 +8,7 @@ PACKAGES=(
   ros-core-dev libroscpp-dev catkin ros-message-generation librostest-dev python3-rostest
   libtf2-ros-dev libtf2-eigen-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   librosbag-dev python3-rosbag libnodeletlib-dev libnodeletlib-tools pluginlib-dev rviz
-  libeigen3-dev libyaml-cpp-dev libceres-dev libgtest-dev python3-matplotlib python3-numpy
+  libeigen3-dev libyaml-cpp-dev libceres-dev libgtest-dev nlohmann-json3-dev python3-matplotlib python3-numpy
   xvfb xauth imagemagick
 )
 

@@ -1,5 +1,7 @@
 #include "lane_keeping/tire/tire.h"
 
+#include <algorithm>
+
 #include "lane_keeping/common/errors.h"
 
 namespace lane_keeping {
@@ -34,6 +36,22 @@ TireForces<double> Tire::steadyState(const ContactKinematics<double>& kinematics
                                  return m.evaluate(kinematics, static_cast<const double*>(nullptr), static_cast<double*>(nullptr));
                                }},
                     model_);
+}
+
+void Tire::steadyStateVector(const ContactKinematics<double>& kinematics, double* state) const {
+  std::visit(Overloaded{[&](const LugreLumpedTire& m) { m.steadyState(kinematics, state); },
+                        [&](const LugreDistributedTire& m) {
+                          std::vector<double> z;
+                          m.steadyState(kinematics, &z);
+                          std::copy(z.begin(), z.end(), state);
+                        },
+                        [&](const auto&) {}},
+             model_);
+  if (relaxation_length_ > 0.0) {
+    const TireForces<double> forces = steadyState(kinematics);
+    state[model_states_] = forces.lateral_force;
+    state[model_states_ + 1] = forces.aligning_moment;
+  }
 }
 
 double Tire::contactHalfLength() const {

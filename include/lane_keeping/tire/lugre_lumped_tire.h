@@ -18,6 +18,7 @@
 /// where v_ry cancels. In steady state this is eq 56 exactly; for lambda2 = 0 (the default, Deur's
 /// basic model) it is lambda1 = lambda either way.
 #include <cmath>
+#include <type_traits>
 
 #include "lane_keeping/common/scalar.h"
 #include "lane_keeping/tire/contact_kinematics.h"
@@ -70,8 +71,9 @@ class LugreLumpedTire {
     z_dot[kZy] = k.lateral_slip_speed - (c0y + conv_y) * z[kZy];  // eq 38
 
     TireForces<T> out;
-    if (toDouble(k.longitudinal_slip_speed) == 0.0 && toDouble(z[kZx]) == 0.0) {
-      // Free rolling with a relaxed longitudinal bristle: eq 38 keeps z~x = 0 exactly; skip it.
+    if (std::is_same_v<T, double> && toDouble(k.longitudinal_slip_speed) == 0.0 && toDouble(z[kZx]) == 0.0) {
+      // Free rolling with a relaxed longitudinal bristle: eq 38 keeps z~x = 0 exactly; skip it. (Not for
+      // autodiff scalars: d(dz~x/dt)/dz~x = -(sigma0x |v_r| / g + kappa r|w| / L) is not zero.)
       z_dot[kZx] = T(0.0);
       out.longitudinal_force = T(0.0);
     } else {

@@ -48,6 +48,8 @@ class Tire {
 
   /// Forces after the internal states have settled at constant slip (the static curve).
   TireForces<double> steadyState(const ContactKinematics<double>& kinematics) const;
+  /// The settled internal states themselves (stateSize() values), e.g. to start a replay segment.
+  void steadyStateVector(const ContactKinematics<double>& kinematics, double* state) const;
 
   /// Half-length a used for the leading-point slip angle of Beregi eq 8 (brush a; LuGre L/2).
   double contactHalfLength() const;

@@ -68,94 +68,157 @@ class SingleTrackModel {
   /// State derivative (eqs 2, 3, 5, 8 and the tire state equations) for steering torque M_S.
   template <typename T>
   void derivative(const T* x, const T& steering_torque, T* x_dot, VehicleOutputs<T>* outputs = nullptr) const {
+    const Trig<T> steer(x[kDelta]);
+    kinematics(x, steer, x_dot);
+    const Contacts<T> c = contacts(x, steer);
+    const TireForces<T> tf = front_.evaluate(c.front, x + frontTireOffset(), x_dot + frontTireOffset());
+    const TireForces<T> tr = rear_.evaluate(c.rear, x + rearTireOffset(), x_dot + rearTireOffset());
+    T f1, f2;
+    bodyForces(x, steer, tf, tr, &f1, &f2);
+    const T f3 = tf.aligning_moment + steeringSystem(x, steering_torque, x_dot);  // eq 5, f3 = M_F + M_S
+    solveAccelerations(steer, f1, f2, f3, x_dot + kSigma1);
+    if (outputs != nullptr) {
+      outputs->x_dot = x_dot[kX];
+      outputs->y_dot = x_dot[kY];
+      outputs->longitudinal_velocity = c.u;
+      outputs->lateral_acceleration = x_dot[kSigma1] + x[kSigma2] * c.u;
+      outputs->sigma_dot[0] = x_dot[kSigma1];
+      outputs->sigma_dot[1] = x_dot[kSigma2];
+      outputs->sigma_dot[2] = x_dot[kSigma3];
+      outputs->tan_slip_front = c.front.tan_slip_angle;
+      outputs->tan_slip_rear = c.rear.tan_slip_angle;
+      outputs->front = tf;
+      outputs->rear = tr;
+    }
+  }
+
+  // ---- The pieces of derivative(), public so that reduced replays (gap diagnosis: steering with
+  // ---- the chassis motion given, chassis with the steering angle given) use the same physics.
+
+  /// cos, sin and 1/cos of the steering angle, computed once per evaluation.
+  template <typename T>
+  struct Trig {
+    explicit Trig(const T& delta) {
+      using std::cos;
+      using std::sin;
+      c = cos(delta);
+      s = sin(delta);
+      inv_c = 1.0 / c;
+    }
+    T c, s, inv_c;
+  };
+
+  /// Eq 2: x_dot[kX], x_dot[kY], x_dot[kPsi], x_dot[kDelta].
+  template <typename T>
+  void kinematics(const T* x, const Trig<T>& steer, T* x_dot) const {
     using std::cos;
     using std::sin;
-    const double l = p_.wheelbase, d = p_.cg_to_rear_axle, b = l - d, V = p_.speed;
-    const double m = p_.mass, mF = p_.steering_mass, JG = p_.yaw_inertia;
-    const T& psi = x[kPsi];
-    const T& delta = x[kDelta];
-    const T& s1 = x[kSigma1];
-    const T& s2 = x[kSigma2];
-    const T& s3 = x[kSigma3];
-    const T c = cos(delta), s = sin(delta);
-    const T cp = cos(psi), sp = sin(psi);
-    const T inv_c = 1.0 / c;
+    const double b = p_.cgToFrontAxle(), V = p_.speed;
+    const T& c = steer.c;
+    const T& s = steer.s;
+    const T& inv_c = steer.inv_c;
+    const T cp = cos(x[kPsi]), sp = sin(x[kPsi]);
     const T tan_d = s * inv_c;
-
-    // Eq 2: kinematics. sin(psi + delta) and cos(psi + delta) by the addition theorems.
+    // sin(psi + delta) and cos(psi + delta) by the addition theorems.
     const T s_pd = sp * c + cp * s;
     const T c_pd = cp * c - sp * s;
+    const T& s1 = x[kSigma1];
+    const T& s2 = x[kSigma2];
     x_dot[kX] = V * cp * inv_c - s1 * s_pd * inv_c - s2 * b * cp * tan_d;
     x_dot[kY] = V * sp * inv_c + s1 * c_pd * inv_c - s2 * b * sp * tan_d;
     x_dot[kPsi] = s2;
-    x_dot[kDelta] = s3;
+    x_dot[kDelta] = x[kSigma3];
+  }
 
-    // Body-frame forward velocity of G from the constraint (row 1 of eq 1).
+  template <typename T>
+  struct Contacts {
+    ContactKinematics<T> front, rear;
+    T u;  ///< body-frame forward velocity of G (row 1 of eq 1)
+  };
+
+  /// Eq 8 slip angles at the leading points Q (front) and P (rear), Deur slip speeds at the centres.
+  template <typename T>
+  Contacts<T> contacts(const T* x, const Trig<T>& steer) const {
+    const double d = p_.cg_to_rear_axle, b = p_.cgToFrontAxle(), V = p_.speed;
+    const T& s1 = x[kSigma1];
+    const T& s2 = x[kSigma2];
+    const T& s3 = x[kSigma3];
+    const T& s = steer.s;
+    const T& inv_c = steer.inv_c;
     const T front_lateral = s1 + b * s2;  // lateral velocity of F in the body frame
-    const T u = (V - front_lateral * s) * inv_c;
-
-    // Eq 8: slip angles at the leading points Q (front) and P (rear).
+    Contacts<T> out;
+    out.u = (V - front_lateral * s) * inv_c;
     const double aF = front_.contactHalfLength(), aR = rear_.contactHalfLength();
-    ContactKinematics<T> kf, kr;
-    kf.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c * inv_V_ + tan_d;
-    kf.wheel_speed = T(V);
-    kf.lateral_slip_speed = V * tan_d - front_lateral * inv_c;  // -(lateral velocity of F across the wheel)
-    kf.yaw_rate = s2 + s3;
-    kr.tan_slip_angle = -(s1 - (d - aR) * s2) / u;
-    kr.wheel_speed = u;
-    kr.lateral_slip_speed = -(s1 - d * s2);
-    kr.yaw_rate = s2;
+    out.front.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c * inv_V_ + s * inv_c;
+    out.front.wheel_speed = T(V);
+    out.front.lateral_slip_speed = V * s * inv_c - front_lateral * inv_c;  // -(lateral velocity of F across the wheel)
+    out.front.yaw_rate = s2 + s3;
+    out.rear.tan_slip_angle = -(s1 - (d - aR) * s2) / out.u;
+    out.rear.wheel_speed = out.u;
+    out.rear.lateral_slip_speed = -(s1 - d * s2);
+    out.rear.yaw_rate = s2;
+    return out;
+  }
 
-    const TireForces<T> tf = front_.evaluate(kf, x + frontTireOffset(), x_dot + frontTireOffset());
-    const TireForces<T> tr = rear_.evaluate(kr, x + rearTireOffset(), x_dot + rearTireOffset());
-    const T& FF = tf.lateral_force;
-    const T& FR = tr.lateral_force;
-    const T& MF = tf.aligning_moment;
-    const T& MR = tr.aligning_moment;
-
-    // Eq 5: generalised forces (plus the optional disturbance on the body).
+  /// Eq 5: f1 and f2 (plus the optional disturbance on the body).
+  template <typename T>
+  void bodyForces(const T* x, const Trig<T>& steer, const TireForces<T>& tf, const TireForces<T>& tr, T* f1,
+                  T* f2) const {
+    const double d = p_.cg_to_rear_axle, b = p_.cgToFrontAxle(), V = p_.speed;
+    const double m = p_.mass, mF = p_.steering_mass;
+    const T& s1 = x[kSigma1];
+    const T& s2 = x[kSigma2];
+    const T& s3 = x[kSigma3];
+    const T& s = steer.s;
+    const T& inv_c = steer.inv_c;
     const T inv_c3 = inv_c * inv_c * inv_c;
     const T steer_term = (mF + m) * s * inv_c3 * (V * s - s1 - b * s2) * s3;
-    T f1 = FF * inv_c + FR + inv_c * (-(mF + m) * V + m * s2 * b * s) * s2 + steer_term;
-    T f2 = MF + MR + b * FF * inv_c - d * FR - b * inv_c * (mF * V + m * s1 * s) * s2 + b * steer_term;
+    *f1 = tf.lateral_force * inv_c + tr.lateral_force + inv_c * (-(mF + m) * V + m * s2 * b * s) * s2 + steer_term;
+    *f2 = tf.aligning_moment + tr.aligning_moment + b * tf.lateral_force * inv_c - d * tr.lateral_force -
+          b * inv_c * (mF * V + m * s1 * s) * s2 + b * steer_term;
     if (disturbance_.active()) {
-      f1 = f1 + disturbance_.lateral_force;  // a force at G across the body does work on sigma1 only
-      f2 = f2 + disturbance_.yaw_moment;
+      *f1 = *f1 + disturbance_.lateral_force;  // a force at G across the body does work on sigma1 only
+      *f2 = *f2 + disturbance_.yaw_moment;
     }
-    const T f3 = MF + steeringSystem(x, steering_torque, x_dot);
+  }
 
-    // Eqs 3-4: solve M sigma_dot = f. Row 3 gives sigma3_dot = f3/JF - sigma2_dot; substituting it
-    // leaves a 2x2 system with determinant m11 (m22 - JF) - m12^2 > 0.
-    const T inv_c2 = inv_c * inv_c;
+  /// Eqs 3-4: sigma_dot = M(delta)^-1 f. Row 3 gives sigma3_dot = f3/J_F - sigma2_dot; substituting it
+  /// leaves a 2x2 system with determinant m11 (m22 - J_F) - m12^2 > 0.
+  template <typename T>
+  void solveAccelerations(const Trig<T>& steer, const T& f1, const T& f2, const T& f3, T* sigma_dot) const {
+    const double b = p_.cgToFrontAxle(), m = p_.mass, mF = p_.steering_mass, JG = p_.yaw_inertia;
+    const T& s = steer.s;
+    const T inv_c2 = steer.inv_c * steer.inv_c;
     const T m11 = (mF + m) * inv_c2;
     const T mixed = (mF + m * s * s) * inv_c2;
     const T m12 = mixed * b;
     const T m22_minus_JF = JG + mixed * b * b;
     const T inv_det = 1.0 / (m11 * m22_minus_JF - m12 * m12);
     const T rhs2 = f2 - f3;
-    const T s1_dot = (f1 * m22_minus_JF - m12 * rhs2) * inv_det;
-    const T s2_dot = (m11 * rhs2 - m12 * f1) * inv_det;
-    const T s3_dot = f3 * inv_JF_ - s2_dot;
-    x_dot[kSigma1] = s1_dot;
-    x_dot[kSigma2] = s2_dot;
-    x_dot[kSigma3] = s3_dot;
-
-    if (outputs != nullptr) {
-      outputs->x_dot = x_dot[kX];
-      outputs->y_dot = x_dot[kY];
-      outputs->longitudinal_velocity = u;
-      outputs->lateral_acceleration = s1_dot + s2 * u;
-      outputs->sigma_dot[0] = s1_dot;
-      outputs->sigma_dot[1] = s2_dot;
-      outputs->sigma_dot[2] = s3_dot;
-      outputs->tan_slip_front = kf.tan_slip_angle;
-      outputs->tan_slip_rear = kr.tan_slip_angle;
-      outputs->front = tf;
-      outputs->rear = tr;
-    }
+    sigma_dot[0] = (f1 * m22_minus_JF - m12 * rhs2) * inv_det;
+    sigma_dot[1] = (m11 * rhs2 - m12 * f1) * inv_det;
+    sigma_dot[2] = f3 * inv_JF_ - sigma_dot[1];
   }
 
- private:
+  /// Rows 1-2 of eq 3 with the steering motion prescribed (delta, its rate in x[kSigma3] and its
+  /// acceleration given): m11 s1' + m12 s2' = f1,  m12 s1' + m22 s2' = f2 - J_F delta''.
+  template <typename T>
+  void solveChassisAccelerations(const Trig<T>& steer, const T& f1, const T& f2, const T& delta_acceleration,
+                                 T* sigma_dot) const {
+    const double b = p_.cgToFrontAxle(), m = p_.mass, mF = p_.steering_mass, JG = p_.yaw_inertia;
+    const double JF = p_.steering_inertia;
+    const T& s = steer.s;
+    const T inv_c2 = steer.inv_c * steer.inv_c;
+    const T m11 = (mF + m) * inv_c2;
+    const T mixed = (mF + m * s * s) * inv_c2;
+    const T m12 = mixed * b;
+    const T m22 = JF + JG + mixed * b * b;
+    const T rhs2 = f2 - JF * delta_acceleration;
+    const T inv_det = 1.0 / (m11 * m22 - m12 * m12);
+    sigma_dot[0] = (f1 * m22 - m12 * rhs2) * inv_det;
+    sigma_dot[1] = (m11 * rhs2 - m12 * f1) * inv_det;
+  }
+
   /// Torque the steering system passes to the front axle (f3 without M_F), and the derivatives of
   /// its own states. Beregi's rigid, frictionless steering returns the command unchanged.
   template <typename T>
@@ -202,6 +265,7 @@ class SingleTrackModel {
     return transmitted - friction;
   }
 
+ private:
   VehicleParams p_;
   SteeringParams steering_;
   DisturbanceParams disturbance_;

@@ -1,0 +1,95 @@
+#pragma once
+/// The diagnosis result: where the gap lies, which effect causes it, how far it shrinks.
+/// report.json carries the fields of DESIGN §5 (an interface outside checks rely on) and more.
+#include <map>
+#include <string>
+#include <vector>
+
+namespace lane_keeping {
+
+/// The candidate effects, with the names report.json uses (DESIGN §5).
+const std::vector<std::string>& candidateEffectNames();
+
+struct SubsystemGap {
+  std::string name;      ///< steering | chassis | tracker | actuator
+  double nrmse = 0.0;    ///< RMS of the replay residual / RMS of the measured output (per output, averaged)
+  double noise_floor = 0.0;  ///< estimated measurement-noise contribution to nrmse
+  std::vector<std::string> outputs;  ///< the compared outputs, e.g. {"yaw_rate", "psi", "y", "ay"}
+};
+
+struct WindowShare {
+  double t0 = 0.0, t1 = 0.0;  ///< [s]
+  double share = 0.0;         ///< fraction of the residual energy in [t0, t1)
+};
+
+struct BandShare {
+  double f0 = 0.0, f1 = 0.0;  ///< [Hz]
+  double share = 0.0;         ///< fraction of the residual energy in [f0, f1)
+};
+
+struct RegimeShare {
+  std::string variable;       ///< slip_angle | lateral_acceleration | steering_rate
+  double lo = 0.0, hi = 0.0;  ///< bin of |variable|, SI units
+  double share = 0.0;         ///< fraction of the residual energy
+  double time_share = 0.0;    ///< fraction of the samples (to compare with `share`)
+};
+
+struct GapWhere {
+  std::string subsystem;  ///< the subsystem that carries the gap
+  std::vector<SubsystemGap> subsystems;
+  std::vector<WindowShare> windows;  ///< the time windows carrying most of the gap, largest first
+  std::vector<BandShare> bands;      ///< all bands, low to high frequency
+  std::vector<RegimeShare> regimes;
+};
+
+struct RankedEffect {
+  std::string effect;                     ///< one of candidateEffectNames()
+  std::map<std::string, double> params;   ///< fitted parameters, SI units (names documented in README)
+  std::map<std::string, double> param_sigma;  ///< 1-sigma uncertainty of each fitted parameter
+  std::map<std::string, std::string> config;  ///< the config overlay that adds the effect ("key" -> "value")
+  double train_gap_before = 0.0, train_gap_after = 0.0;
+  double heldout_gap_before = 0.0;
+  double heldout_gap_after = 0.0;
+  double shrink = 0.0;                    ///< 1 - heldout_gap_after / heldout_gap_before
+  double score = 0.0;                     ///< evidence used for the verdict (see README)
+};
+
+struct GapVerdict {
+  std::string effect;       ///< winning effect, or "unexplained"
+  double confidence = 0.0;  ///< in [0, 1]
+  double gap_before = 0.0;  ///< held-out gap without the effect
+  double gap_after = 0.0;   ///< held-out gap with the fitted effect
+  double shrink = 0.0;      ///< 1 - gap_after / gap_before
+  std::string reason;       ///< one sentence: why this verdict
+  std::vector<std::string> confusable_with;  ///< effects the data cannot tell apart from the winner
+};
+
+struct ClosedLoopGap {
+  double before = 0.0;  ///< closed-loop replay gap (held-out) with the nominal model
+  double after = 0.0;   ///< with the winning effect added
+  std::map<std::string, double> subsystems_before;  ///< per-subsystem held-out nrmse
+  std::map<std::string, double> subsystems_after;
+};
+
+struct GapReport {
+  std::vector<std::string> logs;     ///< training logs
+  std::vector<std::string> heldout;  ///< held-out logs or segments
+  std::size_t rows_used = 0;
+  std::size_t rows_skipped = 0;
+  std::vector<std::string> notes;
+  GapWhere where;
+  std::vector<RankedEffect> ranking;  ///< best first
+  GapVerdict verdict;
+  ClosedLoopGap how_far;
+};
+
+/// DIR/report.json (DESIGN §5 fields and the rest). Throws InputError if DIR cannot be written.
+/// `path` is the file to write; if it names an existing directory, DIR/report.json is written.
+/// Non-finite numbers (NaN, +-Inf) are written as JSON null (read back as NaN). Layout: gap_report.cpp.
+void writeGapReportJson(const std::string& path, const GapReport& report);
+/// Reads it back (tests, the benchmark scorer). Accepts the file or its directory. Throws InputError
+/// naming the file and the JSON path (e.g. "$.verdict.effect: missing") if a DESIGN §5 key is absent
+/// or has the wrong type; fields beyond DESIGN §5 default when absent.
+GapReport readGapReportJson(const std::string& path);
+
+}  // namespace lane_keeping

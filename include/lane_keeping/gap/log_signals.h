@@ -1,0 +1,63 @@
+#pragma once
+/// Continuous-time view of a log for the replays: linear interpolation of every column, and the
+/// derivatives the replays need, estimated by local quadratic least squares (a Savitzky-Golay filter
+/// for any sampling) so that measurement noise is not differentiated raw:
+///   steering rate  delta_dot  (the delta_rate column if present, else d/dt delta), delta_ddot,
+///   desired rate   delta_des_dot,  yaw acceleration d/dt yaw_rate,
+///   velocity of G  x_dot, y_dot,  and sigma1 = -x_dot sin(psi) + y_dot cos(psi) (row 2 of Beregi eq 1).
+#include <string>
+#include <vector>
+
+#include "lane_keeping/gap/gap_log.h"
+
+namespace lane_keeping {
+
+struct SmoothingWindows {
+  double steering = 0.015;  ///< half-width [s] for delta, delta_des and yaw-rate derivatives
+  double position = 0.10;   ///< half-width [s] for the velocity of G from x, y
+};
+
+class LogSignals {
+ public:
+  enum Channel {
+    kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration,
+    kDeltaRate, kDeltaAcceleration, kDeltaDesRate, kYawAcceleration, kXDot, kYDot, kSigma1, kChannels
+  };
+
+  explicit LogSignals(GapLog log, const SmoothingWindows& windows = {});
+
+  const GapLog& log() const { return log_; }
+  double start() const { return log_.t.front(); }
+  double end() const { return log_.t.back(); }
+  bool has(Channel c) const { return !values_[c].empty(); }
+  /// Linear interpolation; clamps to the first/last sample outside the log.
+  double at(Channel c, double t) const;
+  /// Values at the sample times.
+  const std::vector<double>& samples(Channel c) const { return values_[c]; }
+  const std::vector<double>& times() const { return log_.t; }
+  /// Index of the last sample at or before t (0 if before the start).
+  std::size_t indexAtOrBefore(double t) const;
+
+  static const char* name(Channel c);
+
+  /// White-noise standard deviation of a channel, estimated from fourth differences of the samples
+  /// (var(d4 x) = 70 sigma^2 for white noise; a smooth signal contributes ~h^4 x'''' ).
+  /// For derived channels (delta_rate without a column, sigma1) it is propagated through the
+  /// least-squares derivative: sigma' ~ sigma sqrt(3 / (n w^2)) for n samples in a half-width w.
+  double noise(Channel c) const { return noise_[c]; }
+
+ private:
+  GapLog log_;
+  std::vector<std::vector<double>> values_;
+  std::vector<double> noise_;
+};
+
+/// sigma of white noise in a series by fourth differences.
+double fourthDifferenceNoise(const std::vector<double>& values);
+
+/// Local quadratic least-squares fit of values over [t_i - half_width, t_i + half_width] (at least
+/// two neighbours each side): first (order 1) or second (order 2) derivative at every sample.
+std::vector<double> smoothedDerivative(const std::vector<double>& t, const std::vector<double>& values,
+                                       double half_width, int order);
+
+}  // namespace lane_keeping

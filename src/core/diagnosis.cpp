@@ -1,0 +1,951 @@
+#include "lane_keeping/gap/diagnosis.h"
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include <ceres/ceres.h>
+#include <unsupported/Eigen/FFT>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/gap/candidate_effects.h"
+#include "lane_keeping/gap/gap_metrics.h"
+#include "lane_keeping/gap/log_signals.h"
+#include "lane_keeping/sim/closed_loop.h"
+
+namespace lane_keeping {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+// ================================================================================================
+// Data sets and evaluation
+// ================================================================================================
+
+struct Dataset {
+  std::shared_ptr<const LogSignals> log;
+  std::vector<TimeSegment> segments;
+};
+
+/// Replays of a configuration over data sets, traces concatenated across them.
+struct Evaluation {
+  std::map<std::string, SubsystemReplay> replays;
+  std::map<std::string, SubsystemScore> scores;
+  std::vector<std::vector<std::pair<double, double>>> sigma1;  ///< chassis estimate per data set
+};
+
+using Sigma1Cache = std::vector<std::vector<std::pair<double, double>>>;
+
+/// Replays `subsystems` of `config` over the data sets. The steering replay takes sigma1 from this
+/// configuration's chassis replay, or from `sigma1` when the chassis is not re-run.
+Evaluation evaluate(const SimConfig& config, const std::vector<Dataset>& data, const std::set<std::string>& subsystems,
+                    const ReplayOptions& options, const Sigma1Cache* sigma1 = nullptr) {
+  Evaluation ev;
+  const bool chassis = subsystems.count("chassis") > 0;
+  const bool steering = subsystems.count("steering") > 0;
+  for (std::size_t d = 0; d < data.size(); ++d) {
+    const Dataset& set = data[d];
+    std::vector<std::pair<double, double>> s1;
+    if (chassis || (steering && sigma1 == nullptr)) {
+      SubsystemReplay r = replayChassis(config, *set.log, set.segments, options);
+      s1 = r.sigma1_estimate;
+      if (chassis) {
+        auto it = ev.replays.find("chassis");
+        if (it == ev.replays.end()) {
+          ev.replays["chassis"] = std::move(r);
+        } else {
+          for (std::size_t k = 0; k < it->second.traces.size(); ++k) it->second.traces[k].append(r.traces[k]);
+          it->second.diverged_intervals += r.diverged_intervals;
+        }
+      }
+    } else if (sigma1 != nullptr) {
+      s1 = (*sigma1)[d];
+    }
+    ev.sigma1.push_back(s1);
+    for (const std::string name : {"steering", "tracker", "actuator"}) {
+      if (!subsystems.count(name)) continue;
+      SubsystemReplay r = name == std::string("steering") ? replaySteering(config, *set.log, set.segments, options, &s1)
+                                                          : replaySubsystem(name, config, *set.log, set.segments, options);
+      auto it = ev.replays.find(name);
+      if (it == ev.replays.end()) {
+        ev.replays[name] = std::move(r);
+      } else {
+        for (std::size_t k = 0; k < it->second.traces.size(); ++k) it->second.traces[k].append(r.traces[k]);
+        it->second.diverged_intervals += r.diverged_intervals;
+      }
+    }
+  }
+  for (const auto& [name, replay] : ev.replays) ev.scores[name] = scoreReplay(replay);
+  return ev;
+}
+
+std::set<std::string> allSubsystems() {
+  const auto& names = subsystemNames();
+  return std::set<std::string>(names.begin(), names.end());
+}
+
+/// Combined gap with `changed` scores replacing the nominal ones where present.
+double gapOf(const std::map<std::string, SubsystemScore>& nominal, const std::map<std::string, SubsystemScore>& changed) {
+  std::vector<SubsystemScore> scores;
+  for (const auto& [name, score] : nominal) {
+    const auto it = changed.find(name);
+    scores.push_back(it != changed.end() ? it->second : score);
+  }
+  return combinedGap(scores);
+}
+
+/// Residual vector for the fit: each trace's residuals / sqrt(its sample count), so that the
+/// objective is the sum over traces of mean squares (the sum of nrmse^2).
+std::vector<double> fitResiduals(const Evaluation& ev) {
+  std::vector<double> out;
+  for (const auto& [name, replay] : ev.replays) {
+    for (const auto& trace : replay.traces) {
+      const std::vector<double> r = trace.residual();
+      const double w = r.empty() ? 0.0 : 1.0 / std::sqrt(static_cast<double>(r.size()));
+      for (double v : r) out.push_back(std::isfinite(v) ? v * w : 1e3 * w);
+    }
+  }
+  return out;
+}
+
+double sumOfSquares(const std::vector<double>& r) {
+  double s = 0.0;
+  for (double v : r) s += v * v;
+  return s;
+}
+
+// ================================================================================================
+// Candidate fitting
+// ================================================================================================
+
+struct CandidateFit {
+  const CandidateEffect* effect = nullptr;
+  bool ok = false;
+  std::string note;
+  std::vector<double> theta, sigma;
+  SimConfig corrected;
+  double train_before = 0.0, train_after = 0.0;
+  double heldout_before = 0.0, heldout_after = 0.0;
+  std::map<std::string, SubsystemScore> heldout_scores;
+};
+
+/// The loss of one candidate as a function of its (transformed) parameters.
+class CandidateObjective {
+ public:
+  CandidateObjective(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& data,
+                     const ReplayOptions& options, const Sigma1Cache& nominal_sigma1)
+      : effect_(effect), nominal_(nominal), data_(data), options_(options), nominal_sigma1_(nominal_sigma1) {
+    subsystems_ = std::set<std::string>(effect.subsystems.begin(), effect.subsystems.end());
+  }
+
+  /// Parameters from fit space (log for log-scale ones) to SI.
+  std::vector<double> toTheta(const double* x) const {
+    std::vector<double> theta(effect_.params.size());
+    for (std::size_t i = 0; i < theta.size(); ++i) theta[i] = effect_.params[i].log_scale ? std::exp(x[i]) : x[i];
+    return theta;
+  }
+  std::vector<double> toFitSpace(const std::vector<double>& theta) const {
+    std::vector<double> x(theta.size());
+    for (std::size_t i = 0; i < x.size(); ++i) x[i] = effect_.params[i].log_scale ? std::log(theta[i]) : theta[i];
+    return x;
+  }
+
+  SimConfig configFor(const std::vector<double>& theta) const {
+    SimConfig c = nominal_;
+    effect_.apply(theta, c);
+    return c;
+  }
+
+  /// Residual vector for parameters theta (SI); false if the configuration is invalid.
+  bool residuals(const std::vector<double>& theta, std::vector<double>* out) const {
+    const SimConfig c = configFor(theta);
+    if (!c.problems().empty()) return false;
+    const bool reuse = subsystems_.count("chassis") == 0;
+    const Evaluation ev = evaluate(c, data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr);
+    *out = fitResiduals(ev);
+    return true;
+  }
+
+  double loss(const std::vector<double>& theta) const {
+    std::vector<double> r;
+    if (!residuals(theta, &r)) return std::numeric_limits<double>::infinity();
+    return sumOfSquares(r);
+  }
+
+  const std::set<std::string>& subsystems() const { return subsystems_; }
+  const CandidateEffect& effect() const { return effect_; }
+
+ private:
+  const CandidateEffect& effect_;
+  const SimConfig& nominal_;
+  const std::vector<Dataset>& data_;
+  ReplayOptions options_;
+  const Sigma1Cache& nominal_sigma1_;
+  std::set<std::string> subsystems_;
+};
+
+/// Ceres functor over the transformed parameters.
+struct CeresResiduals {
+  const CandidateObjective* objective;
+  std::size_t count;
+  bool operator()(double const* const* parameters, double* residuals) const {
+    std::vector<double> r;
+    if (!objective->residuals(objective->toTheta(parameters[0]), &r) || r.size() != count) return false;
+    std::copy(r.begin(), r.end(), residuals);
+    return true;
+  }
+};
+
+/// Minimises the loss over parameter j with the others fixed: a grid over [lo, hi] (log-spaced for
+/// log-scale parameters), then golden section in the bracket around the best grid point.
+double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
+                  int points, double current_loss) {
+  const EffectParameter& p = objective.effect().params[j];
+  auto lossAt = [&](double value) {
+    std::vector<double> t = theta;
+    t[j] = value;
+    return objective.loss(t);
+  };
+  auto toAxis = [&](double v) { return p.log_scale ? std::log(v) : v; };
+  auto fromAxis = [&](double u) { return p.log_scale ? std::exp(u) : u; };
+  const double ua = toAxis(lo), ub = toAxis(hi);
+  std::vector<double> grid, losses;
+  for (int i = 0; i < points; ++i) {
+    grid.push_back(ua + (ub - ua) * i / (points - 1));
+    losses.push_back(lossAt(fromAxis(grid.back())));
+  }
+  const std::size_t best = static_cast<std::size_t>(std::min_element(losses.begin(), losses.end()) - losses.begin());
+  double a = grid[best > 0 ? best - 1 : 0], b = grid[std::min(best + 1, grid.size() - 1)];
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - phi * (b - a), d = a + phi * (b - a);
+  double fc = lossAt(fromAxis(c)), fd = lossAt(fromAxis(d));
+  for (int it = 0; it < 16 && (b - a) > 1e-4 * (1.0 + std::fabs(b)); ++it) {
+    if (fc < fd) {
+      b = d; d = c; fd = fc; c = b - phi * (b - a); fc = lossAt(fromAxis(c));
+    } else {
+      a = c; c = d; fc = fd; d = a + phi * (b - a); fd = lossAt(fromAxis(d));
+    }
+  }
+  double u = fc < fd ? c : d, loss = std::min(fc, fd);
+  if (losses[best] < loss) {
+    u = grid[best];
+    loss = losses[best];
+  }
+  if (loss < current_loss) {
+    theta[j] = fromAxis(u);
+    return loss;
+  }
+  return current_loss;
+}
+
+/// Robust low-dimensional fit: coordinate-wise grid + golden section over the whole bounds, then a
+/// second round in a narrowed range. (Gauss-Newton alone crawls here: stick-slip friction and
+/// saturations make the residuals far from linear in the parameters.)
+std::vector<double> coordinateFit(const CandidateObjective& objective) {
+  const auto& params = objective.effect().params;
+  std::vector<double> theta;
+  for (const auto& p : params) theta.push_back(p.initial);
+  double loss = objective.loss(theta);
+  for (int round = 0; round < (params.size() > 1 ? 2 : 1); ++round) {
+    for (std::size_t j = 0; j < params.size(); ++j) {
+      const auto& p = params[j];
+      double lo = p.lower, hi = p.upper;
+      if (round > 0) {  // narrow the range around the current value
+        if (p.log_scale) {
+          lo = std::max(p.lower, theta[j] / 3.0);
+          hi = std::min(p.upper, theta[j] * 3.0);
+        } else {
+          const double span = 0.15 * (p.upper - p.lower);
+          lo = std::max(p.lower, theta[j] - span);
+          hi = std::min(p.upper, theta[j] + span);
+        }
+      }
+      loss = lineSearch(objective, theta, j, lo, hi, round == 0 ? 17 : 9, loss);
+    }
+  }
+  return theta;
+}
+
+CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& train,
+                          const std::vector<Dataset>& heldout, const Evaluation& nominal_train,
+                          const Evaluation& nominal_heldout, const DiagnosisOptions& options) {
+  CandidateFit fit;
+  fit.effect = &effect;
+  const CandidateObjective objective(effect, nominal, train, options.replay, nominal_train.sigma1);
+  std::vector<double> theta;
+  try {
+    theta = coordinateFit(objective);
+    if (!effect.profile) {
+      // Polish with Levenberg-Marquardt (Ceres, central differences) from the coordinate optimum.
+      std::vector<double> x = objective.toFitSpace(theta);
+      std::vector<double> r0;
+      if (objective.residuals(theta, &r0)) {
+        auto* cost = new ceres::DynamicNumericDiffCostFunction<CeresResiduals, ceres::CENTRAL>(
+            new CeresResiduals{&objective, r0.size()});
+        cost->AddParameterBlock(static_cast<int>(x.size()));
+        cost->SetNumResiduals(static_cast<int>(r0.size()));
+        ceres::Problem problem;
+        problem.AddResidualBlock(cost, nullptr, x.data());
+        for (std::size_t i = 0; i < x.size(); ++i) {
+          const auto& p = effect.params[i];
+          problem.SetParameterLowerBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.lower) : p.lower);
+          problem.SetParameterUpperBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.upper) : p.upper);
+        }
+        ceres::Solver::Options solver;
+        solver.linear_solver_type = ceres::DENSE_QR;
+        solver.max_num_iterations = 8;
+        solver.function_tolerance = 1e-6;
+        solver.logging_type = ceres::SILENT;
+        ceres::Solver::Summary summary;
+        ceres::Solve(solver, &problem, &summary);
+        const std::vector<double> polished = objective.toTheta(x.data());
+        if (std::getenv("LK_GAP_DEBUG")) std::fprintf(stderr, "%s: %s\n", effect.name.c_str(), summary.BriefReport().c_str());
+        if (objective.loss(polished) < objective.loss(theta)) theta = polished;
+      }
+    }
+  } catch (const std::exception& e) {
+    fit.note = std::string("fit failed: ") + e.what();
+    return fit;
+  }
+  fit.theta = theta;
+  fit.corrected = objective.configFor(theta);
+
+  // 1-sigma uncertainty from the Gauss-Newton covariance s^2 (J^T J)^-1 at the optimum (central
+  // differences in SI units). Residuals of neighbouring samples are correlated, so this is a lower bound.
+  std::vector<double> r_opt;
+  if (objective.residuals(theta, &r_opt)) {
+    const std::size_t n = r_opt.size(), p = theta.size();
+    Eigen::MatrixXd J(n, p);
+    bool ok = true;
+    for (std::size_t j = 0; j < p && ok; ++j) {
+      const double h = 1e-4 * std::max(std::fabs(theta[j]), effect.params[j].log_scale ? 1e-3 : 1e-3 * (effect.params[j].upper - effect.params[j].lower));
+      std::vector<double> tp = theta, tm = theta, rp, rm;
+      tp[j] += h;
+      tm[j] -= h;
+      ok = objective.residuals(tp, &rp) && objective.residuals(tm, &rm) && rp.size() == n && rm.size() == n;
+      for (std::size_t i = 0; ok && i < n; ++i) J(i, j) = (rp[i] - rm[i]) / (2.0 * h);
+    }
+    fit.sigma.assign(p, kNaN);
+    if (ok && n > p) {
+      // Residuals are weighted by 1/sqrt(N_trace); s^2 is estimated per weighted residual.
+      const double s2 = sumOfSquares(r_opt) / static_cast<double>(n - p);
+      const Eigen::MatrixXd info = J.transpose() * J;
+      const Eigen::MatrixXd cov = s2 * info.completeOrthogonalDecomposition().pseudoInverse();
+      for (std::size_t j = 0; j < p; ++j) fit.sigma[j] = std::sqrt(std::max(0.0, cov(j, j)));
+    }
+  }
+
+  // Scores: training and held-out, all subsystems (unchanged ones keep their nominal scores).
+  const std::set<std::string>& changed = objective.subsystems();
+  const bool reuse = changed.count("chassis") == 0;
+  const Evaluation train_ev = evaluate(fit.corrected, train, changed, options.replay, reuse ? &nominal_train.sigma1 : nullptr);
+  const Evaluation held_ev =
+      evaluate(fit.corrected, heldout, changed, options.replay, reuse ? &nominal_heldout.sigma1 : nullptr);
+  fit.train_before = combinedGap([&] {
+    std::vector<SubsystemScore> v;
+    for (const auto& [n, s] : nominal_train.scores) v.push_back(s);
+    return v;
+  }());
+  fit.train_after = gapOf(nominal_train.scores, train_ev.scores);
+  fit.heldout_before = gapOf(nominal_heldout.scores, {});
+  fit.heldout_after = gapOf(nominal_heldout.scores, held_ev.scores);
+  fit.heldout_scores = nominal_heldout.scores;
+  for (const auto& [n, s] : held_ev.scores) fit.heldout_scores[n] = s;
+  fit.ok = true;
+  return fit;
+}
+
+// ================================================================================================
+// Where: windows, bands, regimes
+// ================================================================================================
+
+/// Residual energy above the noise floor of each sample of a subsystem: sum over its traces of
+/// max(0, r^2 - floor^2), with the sample times.
+void excessEnergy(const SubsystemReplay& replay, const SubsystemScore& score, std::vector<double>* t, std::vector<double>* e) {
+  for (std::size_t k = 0; k < replay.traces.size(); ++k) {
+    const auto r = replay.traces[k].residual();
+    const double f2 = score.traces[k].floor * score.traces[k].floor;
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      t->push_back(replay.traces[k].t[i]);
+      e->push_back(std::max(0.0, r[i] * r[i] - f2) / std::max<std::size_t>(1, r.size()));
+    }
+  }
+}
+
+/// Welch power spectral density of a uniformly resampled series (Hann windows, 50 % overlap).
+void welch(const std::vector<double>& x, double dt, std::vector<double>* f, std::vector<double>* psd) {
+  const std::size_t n = x.size();
+  std::size_t len = 256;
+  while (len > 16 && len > n) len /= 2;
+  f->clear();
+  psd->clear();
+  if (n < 16) return;
+  std::vector<double> w(len);
+  double wss = 0.0;
+  for (std::size_t i = 0; i < len; ++i) {
+    w[i] = 0.5 - 0.5 * std::cos(2.0 * M_PI * i / (len - 1));
+    wss += w[i] * w[i];
+  }
+  Eigen::FFT<double> fft;
+  std::vector<double> acc(len / 2 + 1, 0.0), chunk(len);
+  std::vector<std::complex<double>> spectrum;
+  int count = 0;
+  for (std::size_t start = 0; start + len <= n; start += len / 2) {
+    double mean = 0.0;
+    for (std::size_t i = 0; i < len; ++i) mean += x[start + i];
+    mean /= len;
+    for (std::size_t i = 0; i < len; ++i) chunk[i] = (x[start + i] - mean) * w[i];
+    fft.fwd(spectrum, chunk);
+    for (std::size_t k = 0; k <= len / 2; ++k) acc[k] += std::norm(spectrum[k]);
+    ++count;
+  }
+  for (std::size_t k = 0; k <= len / 2; ++k) {
+    f->push_back(k / (len * dt));
+    const double one_sided = (k == 0 || k == len / 2) ? 1.0 : 2.0;
+    psd->push_back(one_sided * acc[k] * dt / (wss * std::max(1, count)));
+  }
+}
+
+/// The residual of a subsystem as one series at the log rate (RMS over its traces), time-sorted.
+std::vector<std::pair<double, double>> subsystemSeries(const SubsystemReplay& replay) {
+  std::map<double, std::pair<double, int>> acc;
+  for (const auto& trace : replay.traces) {
+    const auto r = trace.residual();
+    for (std::size_t i = 0; i < r.size(); ++i) {
+      auto& a = acc[trace.t[i]];
+      a.first += r[i] * r[i];
+      a.second += 1;
+    }
+  }
+  std::vector<std::pair<double, double>> out;
+  for (const auto& [t, a] : acc) out.emplace_back(t, std::sqrt(a.first / a.second));
+  return out;
+}
+
+/// Signed residual series of the first trace (for spectra: RMS would rectify).
+std::vector<double> signedSeries(const SubsystemReplay& replay, double* dt) {
+  std::vector<double> values;
+  if (replay.traces.empty() || replay.traces[0].t.size() < 2) return values;
+  const auto& trace = replay.traces[0];
+  const auto r = trace.residual();
+  std::vector<double> steps;
+  for (std::size_t i = 1; i < trace.t.size(); ++i) {
+    if (trace.t[i] > trace.t[i - 1]) steps.push_back(trace.t[i] - trace.t[i - 1]);
+  }
+  std::sort(steps.begin(), steps.end());
+  *dt = steps.empty() ? 0.01 : steps[steps.size() / 2];
+  return r;
+}
+
+GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, const SimConfig& nominal,
+                       DiagnosisArtifacts* artifacts) {
+  GapWhere where;
+  double best = -1.0;
+  for (const std::string& name : subsystemNames()) {
+    const auto it = ev.scores.find(name);
+    if (it == ev.scores.end()) continue;
+    SubsystemGap g;
+    g.name = name;
+    g.nrmse = it->second.nrmse;
+    g.noise_floor = it->second.floor;
+    for (const auto& t : it->second.traces) g.outputs.push_back(t.name);
+    where.subsystems.push_back(g);
+    if (it->second.excess > best) {
+      best = it->second.excess;
+      where.subsystem = name;
+    }
+  }
+  // The steering replay takes the chassis replay's lateral velocity: a chassis mismatch shows in both.
+  // Report the upstream subsystem when it carries a comparable share.
+  if (where.subsystem == "steering" && ev.scores.count("chassis") &&
+      ev.scores.at("chassis").excess >= 0.3 * ev.scores.at("steering").excess && ev.scores.at("chassis").excess > 0.02) {
+    where.subsystem = "chassis";
+  }
+  if (where.subsystem.empty()) return where;
+  const SubsystemReplay& replay = ev.replays.at(where.subsystem);
+  const SubsystemScore& score = ev.scores.at(where.subsystem);
+
+  // Windows: excess energy per time window of the dominant subsystem.
+  std::vector<double> t, e;
+  excessEnergy(replay, score, &t, &e);
+  double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min, total = 0.0;
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    t_min = std::min(t_min, t[i]);
+    t_max = std::max(t_max, t[i]);
+    total += e[i];
+  }
+  if (total > 0.0 && t_max > t_min) {
+    const double width = std::max(0.5, (t_max - t_min) / 24.0);
+    const int bins = static_cast<int>(std::ceil((t_max - t_min) / width + 1e-9));
+    std::vector<double> energy(std::max(1, bins), 0.0);
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      energy[std::min(bins - 1, static_cast<int>((t[i] - t_min) / width))] += e[i];
+    }
+    std::vector<WindowShare> windows;
+    for (int b = 0; b < bins; ++b) windows.push_back({t_min + b * width, t_min + (b + 1) * width, energy[b] / total});
+    std::sort(windows.begin(), windows.end(), [](const auto& a, const auto& b) { return a.share > b.share; });
+    windows.resize(std::min<std::size_t>(5, windows.size()));
+    where.windows = windows;
+  }
+
+  // Bands: spectrum of the dominant subsystem's residual minus its white-noise level.
+  double dt = 0.01;
+  const std::vector<double> series = signedSeries(replay, &dt);
+  std::vector<double> f, psd;
+  welch(series, dt, &f, &psd);
+  if (!f.empty()) {
+    const double noise_psd = 2.0 * dt * score.traces[0].floor * score.traces[0].floor;
+    const double nyquist = 0.5 / dt;
+    std::vector<double> edges{0.0, 0.5, 2.0, 8.0, 32.0};
+    edges.erase(std::remove_if(edges.begin(), edges.end(), [&](double x) { return x >= nyquist; }), edges.end());
+    edges.push_back(nyquist);
+    std::vector<double> energy(edges.size() - 1, 0.0);
+    double sum = 0.0;
+    const double df = f.size() > 1 ? f[1] - f[0] : 1.0;
+    for (std::size_t k = 1; k < f.size(); ++k) {
+      const double excess = std::max(0.0, psd[k] - noise_psd) * df;
+      for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
+        if (f[k] >= edges[b] && (f[k] < edges[b + 1] || b + 2 == edges.size())) {
+          energy[b] += excess;
+          break;
+        }
+      }
+      sum += excess;
+    }
+    for (std::size_t b = 0; b + 1 < edges.size(); ++b) {
+      where.bands.push_back({edges[b], edges[b + 1], sum > 0.0 ? energy[b] / sum : 0.0});
+    }
+  }
+
+  // Regimes: share of the excess energy vs share of samples in bins of |front slip angle|, |a_y|,
+  // |steering rate| (from the log; the slip angle with the chassis replay's lateral velocity).
+  struct Binning {
+    std::string name;
+    std::vector<double> edges;
+  };
+  const std::vector<Binning> binnings{{"slip_angle", {0.0, 0.0087, 0.0175, 0.035, 0.07, 1e9}},
+                                      {"lateral_acceleration", {0.0, 0.5, 1.0, 2.0, 4.0, 1e9}},
+                                      {"steering_rate", {0.0, 0.02, 0.05, 0.1, 0.3, 1e9}}};
+  const double b_front = nominal.vehicle.cgToFrontAxle(), V = nominal.vehicle.speed;
+  for (const auto& binning : binnings) {
+    std::vector<double> energy(binning.edges.size() - 1, 0.0), count(binning.edges.size() - 1, 0.0);
+    double e_sum = 0.0, n_sum = 0.0;
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      // Find the data set holding t[i] (segments do not overlap across data sets in time order).
+      const LogSignals* log = nullptr;
+      for (const auto& d : data) {
+        if (t[i] >= d.log->start() && t[i] <= d.log->end()) {
+          log = d.log.get();
+          break;
+        }
+      }
+      if (log == nullptr) continue;
+      double value = 0.0;
+      if (binning.name == "slip_angle") {
+        value = std::fabs(log->at(LogSignals::kDelta, t[i]) -
+                          (log->at(LogSignals::kSigma1, t[i]) + b_front * log->at(LogSignals::kYawRate, t[i])) / V);
+      } else if (binning.name == "lateral_acceleration") {
+        value = log->has(LogSignals::kLateralAcceleration) ? std::fabs(log->at(LogSignals::kLateralAcceleration, t[i]))
+                                                           : std::fabs(V * log->at(LogSignals::kYawRate, t[i]));
+      } else {
+        value = std::fabs(log->at(LogSignals::kDeltaRate, t[i]));
+      }
+      for (std::size_t b = 0; b + 1 < binning.edges.size(); ++b) {
+        if (value >= binning.edges[b] && value < binning.edges[b + 1]) {
+          energy[b] += e[i];
+          count[b] += 1.0;
+          break;
+        }
+      }
+      e_sum += e[i];
+      n_sum += 1.0;
+    }
+    for (std::size_t b = 0; b + 1 < binning.edges.size(); ++b) {
+      if (count[b] == 0.0) continue;
+      RegimeShare r;
+      r.variable = binning.name;
+      r.lo = binning.edges[b];
+      r.hi = binning.edges[b + 1] > 1e8 ? std::numeric_limits<double>::infinity() : binning.edges[b + 1];
+      r.share = e_sum > 0.0 ? energy[b] / e_sum : 0.0;
+      r.time_share = n_sum > 0.0 ? count[b] / n_sum : 0.0;
+      where.regimes.push_back(r);
+    }
+  }
+
+  if (artifacts != nullptr) {
+    // residuals.csv: per subsystem RMS-over-outputs residual on a common time base.
+    std::map<std::string, std::vector<std::pair<double, double>>> series_by_name;
+    std::set<double> times;
+    for (const auto& [name, r] : ev.replays) {
+      series_by_name[name] = subsystemSeries(r);
+      for (const auto& p : series_by_name[name]) times.insert(p.first);
+    }
+    artifacts->residual_t.assign(times.begin(), times.end());
+    for (const auto& [name, s] : series_by_name) {
+      std::map<double, double> lookup(s.begin(), s.end());
+      auto& column = artifacts->residual[name];
+      for (double time : artifacts->residual_t) {
+        const auto it = lookup.find(time);
+        column.push_back(it == lookup.end() ? kNaN : it->second);
+      }
+    }
+    // spectrum.csv on the dominant subsystem's frequency grid.
+    artifacts->spectrum_f = f;
+    for (const auto& [name, r] : ev.replays) {
+      double step = 0.01;
+      std::vector<double> fs, ps;
+      welch(signedSeries(r, &step), step, &fs, &ps);
+      std::vector<double> column;
+      for (double fk : f) {
+        double value = kNaN;
+        for (std::size_t k = 0; k + 1 < fs.size(); ++k) {
+          if (fk >= fs[k] && fk <= fs[k + 1]) {
+            const double w = (fk - fs[k]) / std::max(1e-12, fs[k + 1] - fs[k]);
+            value = ps[k] + w * (ps[k + 1] - ps[k]);
+            break;
+          }
+        }
+        column.push_back(value);
+      }
+      artifacts->spectrum[name] = column;
+    }
+  }
+  return where;
+}
+
+// ================================================================================================
+// How far: closed-loop replay
+// ================================================================================================
+
+struct ClosedLoopReplay {
+  double gap = kNaN;
+  std::vector<double> t, y, yaw_rate, delta;
+  std::string note;
+};
+
+/// Simulates the closed loop from the log's first sample with `config` and compares y, yaw rate and
+/// delta: the gap is the RMS over those outputs of RMS(residual) / RMS(measured).
+ClosedLoopReplay closedLoopReplay(SimConfig config, const LogSignals& log, const std::vector<std::pair<double, double>>& sigma1) {
+  ClosedLoopReplay out;
+  const double t0 = log.start();
+  InitialState& init = config.simulation.initial;
+  init.x = log.at(LogSignals::kX, t0);
+  init.y = log.at(LogSignals::kY, t0);
+  init.psi = log.at(LogSignals::kPsi, t0);
+  init.delta = log.at(LogSignals::kDelta, t0);
+  init.sigma2 = log.at(LogSignals::kYawRate, t0);
+  init.sigma3 = log.at(LogSignals::kDeltaRate, t0);
+  init.sigma1 = sigma1.empty() ? log.at(LogSignals::kSigma1, t0) : sigma1.front().second;
+  config.simulation.duration = log.end() - t0;
+  config.simulation.log_rate = std::min(1000.0, 1.0 / std::max(1e-4, log.log().medianStep()));
+  RunResult run;
+  try {
+    run = ClosedLoop(config).run();
+  } catch (const std::exception& e) {
+    out.note = std::string("closed-loop replay failed: ") + e.what();
+    return out;
+  }
+  if (run.diverged()) out.note = "closed-loop replay " + run.message;
+  std::vector<double> res_y, res_r, res_d, all_y, all_r, all_d;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < log.times().size(); ++i) {
+    const double ts = log.times()[i] - t0;
+    while (k + 1 < run.rows.size() && run.rows[k + 1].t <= ts) ++k;
+    if (run.rows.empty() || ts > run.end_time) break;
+    const LogRow& a = run.rows[k];
+    const LogRow& b = run.rows[std::min(k + 1, run.rows.size() - 1)];
+    const double w = b.t > a.t ? std::clamp((ts - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
+    const double y = a.state.y + w * (b.state.y - a.state.y);
+    const double r = a.state.sigma2 + w * (b.state.sigma2 - a.state.sigma2);
+    const double d = a.state.delta + w * (b.state.delta - a.state.delta);
+    out.t.push_back(log.times()[i]);
+    out.y.push_back(y);
+    out.yaw_rate.push_back(r);
+    out.delta.push_back(d);
+    res_y.push_back(log.samples(LogSignals::kY)[i] - y);
+    res_r.push_back(log.samples(LogSignals::kYawRate)[i] - r);
+    res_d.push_back(log.samples(LogSignals::kDelta)[i] - d);
+  }
+  auto rms = [](const std::vector<double>& v) {
+    double s = 0.0;
+    for (double x : v) s += x * x;
+    return v.empty() ? 0.0 : std::sqrt(s / v.size());
+  };
+  auto spread = [](const std::vector<double>& v) {
+    double m = 0.0;
+    for (double x : v) m += x;
+    m /= std::max<std::size_t>(1, v.size());
+    double s = 0.0;
+    for (double x : v) s += (x - m) * (x - m);
+    return std::max(1e-9, std::sqrt(s / std::max<std::size_t>(1, v.size())));
+  };
+  if (res_y.empty()) return out;
+  const double gy = rms(res_y) / spread(log.samples(LogSignals::kY));
+  const double gr = rms(res_r) / spread(log.samples(LogSignals::kYawRate));
+  const double gd = rms(res_d) / spread(log.samples(LogSignals::kDelta));
+  out.gap = std::sqrt((gy * gy + gr * gr + gd * gd) / 3.0);
+  return out;
+}
+
+std::vector<Dataset> wholeLogs(const std::vector<std::shared_ptr<const LogSignals>>& logs, double margin) {
+  std::vector<Dataset> out;
+  for (const auto& log : logs) out.push_back({log, {{log->start() + margin, log->end() + 1e-9}}});
+  return out;
+}
+
+}  // namespace
+
+// ================================================================================================
+GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
+                      const DiagnosisOptions& options, DiagnosisArtifacts* artifacts) {
+  if (training.empty()) throw InputError("gap diagnosis: no training log given");
+  nominal.validate();
+  auto say = [&](const std::string& message) {
+    if (options.progress) options.progress(message);
+  };
+  GapReport report;
+
+  // ---- Data sets ------------------------------------------------------------------------------
+  std::vector<std::shared_ptr<const LogSignals>> train_logs, held_logs;
+  for (const auto& log : training) {
+    train_logs.push_back(std::make_shared<LogSignals>(log));
+    report.logs.push_back(log.source);
+    report.rows_used += log.size();
+    report.rows_skipped += log.rows_skipped;
+    for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
+  }
+  for (const auto& log : heldout) {
+    held_logs.push_back(std::make_shared<LogSignals>(log));
+    report.heldout.push_back(log.source);
+    report.rows_used += log.size();
+    report.rows_skipped += log.rows_skipped;
+    for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
+  }
+  std::vector<Dataset> train, held;
+  if (!held_logs.empty()) {
+    train = wholeLogs(train_logs, options.start_margin);
+    held = wholeLogs(held_logs, options.start_margin);
+  } else {
+    // One run (or several without held-out runs): alternate blocks — even blocks train, odd ones are held out.
+    for (const auto& log : train_logs) {
+      Dataset tr{log, {}}, ho{log, {}};
+      int block = 0;
+      for (double a = log->start() + options.start_margin; a < log->end(); a += options.block_length, ++block) {
+        const TimeSegment s{a, std::min(a + options.block_length, log->end() + 1e-9)};
+        (block % 2 == 0 ? tr : ho).segments.push_back(s);
+      }
+      train.push_back(tr);
+      if (!ho.segments.empty()) held.push_back(ho);
+      report.heldout.push_back(log->log().source + " (odd " + formatNumber(options.block_length) + " s blocks)");
+    }
+    if (held.empty()) throw InputError("gap diagnosis: the log is too short to hold out a block of " +
+                                       formatNumber(options.block_length) + " s");
+  }
+
+  // ---- Where ----------------------------------------------------------------------------------
+  say("replaying subsystems with the nominal model");
+  const std::set<std::string> all = allSubsystems();
+  const Evaluation nominal_train = evaluate(nominal, train, all, options.replay);
+  const Evaluation nominal_held = evaluate(nominal, held, all, options.replay);
+  std::vector<Dataset> everything = train;
+  everything.insert(everything.end(), held.begin(), held.end());
+  // (For the "where" report, the union of training and held-out data.)
+  const Evaluation nominal_all = evaluate(nominal, everything, all, options.replay);
+  report.where = whereAnalysis(nominal_all, everything, nominal, artifacts);
+  const double gap_before = gapOf(nominal_held.scores, {});
+
+  // ---- Which ----------------------------------------------------------------------------------
+  std::vector<const CandidateEffect*> candidates;
+  for (const auto& c : candidateEffects()) {
+    if (options.effects.empty() || std::find(options.effects.begin(), options.effects.end(), c.name) != options.effects.end()) {
+      candidates.push_back(&c);
+    }
+  }
+  std::vector<CandidateFit> fits(candidates.size());
+  std::mutex progress_mutex;
+  std::size_t next = 0;
+  auto worker = [&]() {
+    while (true) {
+      std::size_t index;
+      {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        if (next >= candidates.size()) return;
+        index = next++;
+        say("fitting " + candidates[index]->name);
+      }
+      fits[index] = fitCandidate(*candidates[index], nominal, train, held, nominal_train, nominal_held, options);
+    }
+  };
+  std::vector<std::thread> pool;
+  for (int i = 0; i < std::max(1, options.threads); ++i) pool.emplace_back(worker);
+  for (auto& th : pool) th.join();
+
+  for (const auto& fit : fits) {
+    RankedEffect r;
+    r.effect = fit.effect->name;
+    r.heldout_gap_before = gap_before;
+    if (!fit.ok) {
+      r.heldout_gap_after = gap_before;
+      r.shrink = 0.0;
+      report.notes.push_back(fit.effect->name + ": " + fit.note);
+    } else {
+      for (std::size_t i = 0; i < fit.theta.size(); ++i) {
+        r.params[fit.effect->params[i].name] = fit.theta[i];
+        r.param_sigma[fit.effect->params[i].name] = i < fit.sigma.size() ? fit.sigma[i] : kNaN;
+      }
+      r.config = configDifference(nominal, fit.corrected);
+      r.train_gap_before = fit.train_before;
+      r.train_gap_after = fit.train_after;
+      r.heldout_gap_after = fit.heldout_after;
+      r.shrink = gap_before > 0.0 ? 1.0 - fit.heldout_after / gap_before : 0.0;
+    }
+    r.score = r.shrink;
+    report.ranking.push_back(r);
+  }
+  std::sort(report.ranking.begin(), report.ranking.end(),
+            [](const RankedEffect& a, const RankedEffect& b) { return a.heldout_gap_after < b.heldout_gap_after; });
+
+  // ---- Verdict --------------------------------------------------------------------------------
+  GapVerdict& v = report.verdict;
+  v.gap_before = gap_before;
+  const RankedEffect* best = report.ranking.empty() ? nullptr : &report.ranking.front();
+  const RankedEffect* second = report.ranking.size() > 1 ? &report.ranking[1] : nullptr;
+  std::ostringstream reason;
+  if (gap_before < options.detection_gap) {
+    v.effect = "unexplained";
+    v.gap_after = gap_before;
+    v.shrink = 0.0;
+    v.confidence = std::clamp(1.0 - gap_before / options.detection_gap, 0.0, 1.0) * 0.5 + 0.5;
+    reason << "the nominal model matches the held-out data to within noise (gap " << formatNumber(gap_before)
+           << " < detection threshold " << formatNumber(options.detection_gap) << "): nothing to explain";
+  } else if (best == nullptr || best->shrink < options.min_shrink ||
+             gap_before - best->heldout_gap_after < options.min_gap_reduction) {
+    v.effect = "unexplained";
+    v.gap_after = gap_before;
+    v.shrink = 0.0;
+    const double s = best ? best->shrink : 0.0;
+    v.confidence = std::clamp(1.0 - s / options.min_shrink, 0.0, 1.0) * 0.5 + 0.5;
+    reason << "a gap of " << formatNumber(gap_before) << " (mostly in the " << report.where.subsystem
+           << " subsystem) that no candidate explains: the best, " << (best ? best->effect : "none") << ", removes "
+           << formatNumber(100.0 * s) << " % of it on held-out data (needs " << formatNumber(100.0 * options.min_shrink)
+           << " % and " << formatNumber(options.min_gap_reduction) << ")";
+  } else {
+    v.effect = best->effect;
+    v.gap_after = best->heldout_gap_after;
+    v.shrink = best->shrink;
+    // Confidence: how much of the gap it explains, times how clearly it beats the runner-up.
+    const double margin = second ? (best->shrink - second->shrink) / std::max(1e-9, best->shrink) : 1.0;
+    v.confidence = std::clamp(best->shrink, 0.0, 1.0) * (0.5 + 0.5 * std::clamp(margin / 0.3, 0.0, 1.0));
+    for (const auto& r : report.ranking) {
+      if (&r != best && r.shrink >= options.min_shrink && best->shrink - r.shrink < 0.1) {
+        v.confusable_with.push_back(r.effect);
+      }
+    }
+    reason << best->effect << " removes " << formatNumber(100.0 * best->shrink) << " % of the held-out gap ("
+           << formatNumber(gap_before) << " -> " << formatNumber(best->heldout_gap_after) << ")";
+    if (second) reason << "; next best " << second->effect << " removes " << formatNumber(100.0 * second->shrink) << " %";
+    const auto& known = knownLookAlikes(best->effect);
+    for (const auto& c : v.confusable_with) {
+      if (std::find(known.begin(), known.end(), c) != known.end()) reason << "; " << c << " is a known look-alike";
+    }
+  }
+  v.reason = reason.str();
+
+  // ---- How far --------------------------------------------------------------------------------
+  const CandidateFit* winner = nullptr;
+  for (const auto& fit : fits) {
+    if (fit.ok && fit.effect->name == v.effect) winner = &fit;
+  }
+  for (const auto& [name, score] : nominal_held.scores) report.how_far.subsystems_before[name] = score.excess;
+  for (const auto& [name, score] : (winner ? winner->heldout_scores : nominal_held.scores)) {
+    report.how_far.subsystems_after[name] = score.excess;
+  }
+  if (options.closed_loop) {
+    say("closed-loop replays");
+    const auto& cl_logs = held_logs.empty() ? train_logs : held_logs;
+    double before = 0.0, after = 0.0;
+    int counted = 0;
+    for (std::size_t i = 0; i < cl_logs.size(); ++i) {
+      const Evaluation chassis = evaluate(nominal, wholeLogs({cl_logs[i]}, 0.0), {"chassis"}, options.replay);
+      const auto s1 = chassis.sigma1.empty() ? std::vector<std::pair<double, double>>{} : chassis.sigma1[0];
+      const ClosedLoopReplay b = closedLoopReplay(nominal, *cl_logs[i], s1);
+      const ClosedLoopReplay a = winner ? closedLoopReplay(winner->corrected, *cl_logs[i], s1) : b;
+      if (!b.note.empty()) report.notes.push_back("nominal " + b.note);
+      if (winner && !a.note.empty()) report.notes.push_back("corrected " + a.note);
+      if (std::isfinite(b.gap) && std::isfinite(a.gap)) {
+        before += b.gap * b.gap;
+        after += a.gap * a.gap;
+        ++counted;
+      }
+      if (artifacts != nullptr && i == 0) {
+        artifacts->overlay_t = b.t;
+        artifacts->overlay["y_real"] = {};
+        for (double t : b.t) {
+          artifacts->overlay["y_real"].push_back(cl_logs[i]->at(LogSignals::kY, t));
+          artifacts->overlay["yaw_rate_real"].push_back(cl_logs[i]->at(LogSignals::kYawRate, t));
+          artifacts->overlay["delta_real"].push_back(cl_logs[i]->at(LogSignals::kDelta, t));
+        }
+        artifacts->overlay["y_nominal"] = b.y;
+        artifacts->overlay["yaw_rate_nominal"] = b.yaw_rate;
+        artifacts->overlay["delta_nominal"] = b.delta;
+        if (winner) {
+          auto pad = [&](std::vector<double> v) {
+            v.resize(b.t.size(), kNaN);
+            return v;
+          };
+          artifacts->overlay["y_corrected"] = pad(a.y);
+          artifacts->overlay["yaw_rate_corrected"] = pad(a.yaw_rate);
+          artifacts->overlay["delta_corrected"] = pad(a.delta);
+        }
+      }
+    }
+    report.how_far.before = counted ? std::sqrt(before / counted) : kNaN;
+    report.how_far.after = counted ? std::sqrt(after / counted) : kNaN;
+  }
+  say("done");
+  return report;
+}
+
+void writeDiagnosisArtifacts(const std::string& dir, const DiagnosisArtifacts& artifacts) {
+  auto write = [&](const std::string& name, const std::string& first, const std::vector<double>& x,
+                   const std::vector<std::string>& columns, const std::map<std::string, std::vector<double>>& data) {
+    std::ofstream out(dir + "/" + name);
+    if (!out) throw InputError(dir + "/" + name + ": cannot write");
+    out << first;
+    for (const auto& c : columns) out << "," << c;
+    out << "\n";
+    char buffer[40];
+    for (std::size_t i = 0; i < x.size(); ++i) {
+      std::snprintf(buffer, sizeof(buffer), "%.10g", x[i]);
+      out << buffer;
+      for (const auto& c : columns) {
+        const auto it = data.find(c);
+        const double value = (it != data.end() && i < it->second.size()) ? it->second[i] : kNaN;
+        if (std::isfinite(value)) {
+          std::snprintf(buffer, sizeof(buffer), "%.10g", value);
+          out << "," << buffer;
+        } else {
+          out << ",nan";
+        }
+      }
+      out << "\n";
+    }
+  };
+  write("residuals.csv", "t", artifacts.residual_t, {"tracker", "actuator", "steering", "chassis"}, artifacts.residual);
+  write("spectrum.csv", "f", artifacts.spectrum_f, {"tracker", "actuator", "steering", "chassis"}, artifacts.spectrum);
+  write("overlay.csv", "t", artifacts.overlay_t,
+        {"y_real", "y_nominal", "y_corrected", "yaw_rate_real", "yaw_rate_nominal", "yaw_rate_corrected", "delta_real",
+         "delta_nominal", "delta_corrected"},
+        artifacts.overlay);
+}
+
+}  // namespace lane_keeping

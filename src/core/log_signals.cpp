@@ -1,0 +1,112 @@
+#include "lane_keeping/gap/log_signals.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Dense>
+
+namespace lane_keeping {
+
+std::vector<double> smoothedDerivative(const std::vector<double>& t, const std::vector<double>& values,
+                                       double half_width, int order) {
+  const std::size_t n = t.size();
+  std::vector<double> out(n, 0.0);
+  std::size_t lo = 0, hi = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    while (lo < i && t[i] - t[lo] > half_width) ++lo;
+    while (hi + 1 < n && t[hi + 1] - t[i] <= half_width) ++hi;
+    // At least two samples each side where the log allows, so the quadratic is determined.
+    std::size_t a = std::min(lo, i >= 2 ? i - 2 : 0);
+    std::size_t b = std::max(hi, std::min(n - 1, i + 2));
+    if (b - a < 2) {
+      a = a > 0 ? a - 1 : a;
+      b = std::min(n - 1, b + 1);
+    }
+    // Fit v = c0 + c1 (t - t_i) + c2 (t - t_i)^2 by least squares (normal equations, scaled time).
+    const double scale = std::max(t[b] - t[a], 1e-12);
+    Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+    Eigen::Vector3d r = Eigen::Vector3d::Zero();
+    for (std::size_t j = a; j <= b; ++j) {
+      const double s = (t[j] - t[i]) / scale;
+      const Eigen::Vector3d basis(1.0, s, s * s);
+      A += basis * basis.transpose();
+      r += basis * values[j];
+    }
+    const Eigen::Vector3d c = A.ldlt().solve(r);
+    out[i] = order == 1 ? c[1] / scale : 2.0 * c[2] / (scale * scale);
+  }
+  return out;
+}
+
+double fourthDifferenceNoise(const std::vector<double>& v) {
+  if (v.size() < 8) return 0.0;
+  double sum = 0.0;
+  for (std::size_t i = 2; i + 2 < v.size(); ++i) {
+    const double d = v[i - 2] - 4.0 * v[i - 1] + 6.0 * v[i] - 4.0 * v[i + 1] + v[i + 2];
+    sum += d * d;
+  }
+  return std::sqrt(sum / (v.size() - 4) / 70.0);
+}
+
+LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
+    : log_(std::move(log)), values_(kChannels), noise_(kChannels, 0.0) {
+  const auto& t = log_.t;
+  values_[kX] = log_.x;
+  values_[kY] = log_.y;
+  values_[kPsi] = log_.psi;
+  values_[kYawRate] = log_.yaw_rate;
+  values_[kDelta] = log_.delta;
+  values_[kDeltaDes] = log_.delta_des;
+  values_[kTorque] = log_.torque;
+  values_[kSpeed] = log_.v;
+  values_[kLateralAcceleration] = log_.ay;
+  values_[kDeltaRate] =
+      log_.hasSteeringRate() ? log_.delta_rate : smoothedDerivative(t, log_.delta, windows.steering, 1);
+  values_[kDeltaAcceleration] = smoothedDerivative(t, values_[kDeltaRate], windows.steering, 1);
+  values_[kDeltaDesRate] = smoothedDerivative(t, log_.delta_des, windows.steering, 1);
+  values_[kYawAcceleration] = smoothedDerivative(t, log_.yaw_rate, windows.steering, 1);
+  values_[kXDot] = smoothedDerivative(t, log_.x, windows.position, 1);
+  values_[kYDot] = smoothedDerivative(t, log_.y, windows.position, 1);
+  values_[kSigma1].resize(t.size());
+  for (std::size_t i = 0; i < t.size(); ++i) {
+    values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
+  }
+  for (Channel c : {kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration}) {
+    noise_[c] = fourthDifferenceNoise(values_[c]);
+  }
+  double step = log_.medianStep();
+  if (!(step > 0.0)) step = 0.01;
+  auto derivativeNoise = [&](double sigma, double half_width) {
+    const double n = std::max(5.0, 2.0 * half_width / step + 1.0);
+    return sigma * std::sqrt(3.0 / (n * half_width * half_width));
+  };
+  noise_[kDeltaRate] = log_.hasSteeringRate() ? fourthDifferenceNoise(values_[kDeltaRate])
+                                              : derivativeNoise(noise_[kDelta], windows.steering);
+  noise_[kSigma1] = derivativeNoise(std::max(noise_[kX], noise_[kY]), windows.position);
+}
+
+std::size_t LogSignals::indexAtOrBefore(double t) const {
+  const auto& times = log_.t;
+  if (t <= times.front()) return 0;
+  const auto it = std::upper_bound(times.begin(), times.end(), t);
+  return static_cast<std::size_t>(it - times.begin()) - 1;
+}
+
+double LogSignals::at(Channel c, double t) const {
+  const auto& v = values_[c];
+  const auto& times = log_.t;
+  if (t <= times.front()) return v.front();
+  if (t >= times.back()) return v.back();
+  const std::size_t i = indexAtOrBefore(t);
+  const double w = (t - times[i]) / (times[i + 1] - times[i]);
+  return v[i] + w * (v[i + 1] - v[i]);
+}
+
+const char* LogSignals::name(Channel c) {
+  static const char* names[] = {"x",         "y",          "psi",        "yaw_rate",     "delta",  "delta_des",
+                                "torque",    "v",          "ay",         "delta_rate",   "delta_acceleration",
+                                "delta_des_rate", "yaw_acceleration", "x_dot", "y_dot", "sigma1"};
+  return names[c];
+}
+
+}  // namespace lane_keeping
