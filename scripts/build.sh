@@ -11,7 +11,11 @@ if [ ! -e "$WS/src/lane_keeping" ]; then
 fi
 cd "$WS"
 JOBS="${LK_JOBS:-$(nproc)}"
-catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$JOBS" "$@" >"$BUILD_ROOT/catkin_make.log" 2>&1 || {
+# Always build every target first (tools must not go stale against a rebuilt library), then any
+# extra targets asked for (e.g. tests).
+{ catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$JOBS" &&
+  { [ $# -eq 0 ] || catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$JOBS" "$@"; }
+} >"$BUILD_ROOT/catkin_make.log" 2>&1 || {
   tail -n 60 "$BUILD_ROOT/catkin_make.log"
   echo "[build] catkin_make failed; full log: $BUILD_ROOT/catkin_make.log" >&2
   exit 1

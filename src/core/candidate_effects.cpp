@@ -37,7 +37,8 @@ std::vector<CandidateEffect> buildCandidates() {
                   [](const std::vector<double>& p, SimConfig& c) { c.delays.torque_to_plant += p[0]; }});
   list.push_back({"steering_friction",
                   "Coulomb and viscous friction in the steering",
-                  {{"coulomb", "N m", 1.0, 0.0, 200.0, false}, {"viscous", "N m s/rad", 0.5, 0.0, 100.0, false}},
+                  // Log-spaced: friction levels span decades and the loss has narrow minima (stick-slip).
+                  {{"coulomb", "N m", 1.0, 0.02, 200.0, true}, {"viscous", "N m s/rad", 0.1, 0.01, 100.0, true}},
                   {"steering"},
                   false,
                   [](const std::vector<double>& p, SimConfig& c) {
@@ -93,7 +94,7 @@ std::vector<CandidateEffect> buildCandidates() {
                   }});
   list.push_back({"steering_compliance",
                   "a torsionally compliant steering column between actuator and wheel",
-                  {{"stiffness", "N m/rad", 5000.0, 100.0, 1e6, true}, {"damping", "N m s/rad", 5.0, 0.0, 500.0, false}},
+                  {{"stiffness", "N m/rad", 5000.0, 100.0, 1e6, true}, {"damping", "N m s/rad", 5.0, 0.1, 500.0, true}},
                   {"steering"},
                   false,
                   [](const std::vector<double>& p, SimConfig& c) {
@@ -101,11 +102,14 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.steering.column_damping = p[1];
                   }});
   list.push_back({"inertia",
-                  "the car's yaw inertia differs",
-                  {{"yaw_scale", "", 1.0, 0.2, 5.0, true}},
+                  "the car's yaw inertia and mass differ",
+                  {{"yaw_scale", "", 1.0, 0.2, 5.0, true}, {"mass_scale", "", 1.0, 0.5, 2.0, true}},
                   {"chassis", "steering"},
                   false,
-                  [](const std::vector<double>& p, SimConfig& c) { c.vehicle.yaw_inertia *= p[0]; }});
+                  [](const std::vector<double>& p, SimConfig& c) {
+                    c.vehicle.yaw_inertia *= p[0];
+                    c.vehicle.mass *= p[1];
+                  }});
   return list;
 }
 

@@ -228,7 +228,7 @@ double lineSearch(const CandidateObjective& objective, std::vector<double>& thet
   const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
   double c = b - phi * (b - a), d = a + phi * (b - a);
   double fc = lossAt(fromAxis(c)), fd = lossAt(fromAxis(d));
-  for (int it = 0; it < 16 && (b - a) > 1e-4 * (1.0 + std::fabs(b)); ++it) {
+  for (int it = 0; it < 10 && (b - a) > 1e-3 * (1.0 + std::fabs(b)); ++it) {
     if (fc < fd) {
       b = d; d = c; fd = fc; c = b - phi * (b - a); fc = lossAt(fromAxis(c));
     } else {
@@ -269,7 +269,7 @@ std::vector<double> coordinateFit(const CandidateObjective& objective) {
           hi = std::min(p.upper, theta[j] + span);
         }
       }
-      loss = lineSearch(objective, theta, j, lo, hi, round == 0 ? 17 : 9, loss);
+      loss = lineSearch(objective, theta, j, lo, hi, round == 0 ? 13 : 7, loss);
     }
   }
   return theta;
@@ -302,7 +302,7 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nomina
         }
         ceres::Solver::Options solver;
         solver.linear_solver_type = ceres::DENSE_QR;
-        solver.max_num_iterations = 8;
+        solver.max_num_iterations = 4;
         solver.function_tolerance = 1e-6;
         solver.logging_type = ceres::SILENT;
         ceres::Solver::Summary summary;
@@ -789,6 +789,12 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   for (int i = 0; i < std::max(1, options.threads); ++i) pool.emplace_back(worker);
   for (auto& th : pool) th.join();
 
+  // A candidate can be the cause only if it changes the subsystem where the gap lies (a pure steering
+  // effect leaves no chassis residual; no candidate touches the actuator subsystem).
+  const std::string& where_subsystem = report.where.subsystem;
+  auto eligible = [&](const CandidateEffect& e) {
+    return std::find(e.subsystems.begin(), e.subsystems.end(), where_subsystem) != e.subsystems.end();
+  };
   for (const auto& fit : fits) {
     RankedEffect r;
     r.effect = fit.effect->name;
@@ -817,8 +823,16 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   // ---- Verdict --------------------------------------------------------------------------------
   GapVerdict& v = report.verdict;
   v.gap_before = gap_before;
-  const RankedEffect* best = report.ranking.empty() ? nullptr : &report.ranking.front();
-  const RankedEffect* second = report.ranking.size() > 1 ? &report.ranking[1] : nullptr;
+  const RankedEffect* best = nullptr;
+  const RankedEffect* second = nullptr;
+  for (const auto& r : report.ranking) {
+    if (!eligible(candidateEffect(r.effect))) continue;
+    if (best == nullptr) {
+      best = &r;
+    } else if (second == nullptr) {
+      second = &r;
+    }
+  }
   std::ostringstream reason;
   if (gap_before < options.detection_gap) {
     v.effect = "unexplained";
@@ -834,10 +848,15 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     v.shrink = 0.0;
     const double s = best ? best->shrink : 0.0;
     v.confidence = std::clamp(1.0 - s / options.min_shrink, 0.0, 1.0) * 0.5 + 0.5;
-    reason << "a gap of " << formatNumber(gap_before) << " (mostly in the " << report.where.subsystem
-           << " subsystem) that no candidate explains: the best, " << (best ? best->effect : "none") << ", removes "
-           << formatNumber(100.0 * s) << " % of it on held-out data (needs " << formatNumber(100.0 * options.min_shrink)
-           << " % and " << formatNumber(options.min_gap_reduction) << ")";
+    reason << "a gap of " << formatNumber(gap_before) << " (mostly in the " << where_subsystem
+           << " subsystem) that no candidate explains: ";
+    if (best == nullptr) {
+      reason << "no candidate changes the " << where_subsystem << " subsystem";
+    } else {
+      reason << "the best candidate that changes it, " << best->effect << ", removes " << formatNumber(100.0 * s)
+             << " % of it on held-out data (needs " << formatNumber(100.0 * options.min_shrink) << " % and "
+             << formatNumber(options.min_gap_reduction) << ")";
+    }
   } else {
     v.effect = best->effect;
     v.gap_after = best->heldout_gap_after;
@@ -846,7 +865,8 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     const double margin = second ? (best->shrink - second->shrink) / std::max(1e-9, best->shrink) : 1.0;
     v.confidence = std::clamp(best->shrink, 0.0, 1.0) * (0.5 + 0.5 * std::clamp(margin / 0.3, 0.0, 1.0));
     for (const auto& r : report.ranking) {
-      if (&r != best && r.shrink >= options.min_shrink && best->shrink - r.shrink < 0.1) {
+      if (&r != best && eligible(candidateEffect(r.effect)) && r.shrink >= options.min_shrink &&
+          best->shrink - r.shrink < 0.1) {
         v.confusable_with.push_back(r.effect);
       }
     }

@@ -63,7 +63,10 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   values_[kDeltaRate] =
       log_.hasSteeringRate() ? log_.delta_rate : smoothedDerivative(t, log_.delta, windows.steering, 1);
   values_[kDeltaAcceleration] = smoothedDerivative(t, values_[kDeltaRate], windows.steering, 1);
-  values_[kDeltaDesRate] = smoothedDerivative(t, log_.delta_des, windows.steering, 1);
+  // delta_des is computed by the tracker, not measured: a short window (2.5 samples) keeps test-signal
+  // content of a few tens of Hz instead of averaging it away.
+  const double step0 = t.size() > 1 ? (t.back() - t.front()) / (t.size() - 1) : 0.01;
+  values_[kDeltaDesRate] = smoothedDerivative(t, log_.delta_des, std::min(windows.steering, 2.5 * step0), 1);
   values_[kYawAcceleration] = smoothedDerivative(t, log_.yaw_rate, windows.steering, 1);
   values_[kXDot] = smoothedDerivative(t, log_.x, windows.position, 1);
   values_[kYDot] = smoothedDerivative(t, log_.y, windows.position, 1);
@@ -98,6 +101,19 @@ double LogSignals::at(Channel c, double t) const {
   if (t <= times.front()) return v.front();
   if (t >= times.back()) return v.back();
   const std::size_t i = indexAtOrBefore(t);
+  const double w = (t - times[i]) / (times[i + 1] - times[i]);
+  return v[i] + w * (v[i + 1] - v[i]);
+}
+
+double LogSignals::at(Channel c, double t, std::size_t* hint) const {
+  const auto& v = values_[c];
+  const auto& times = log_.t;
+  if (t <= times.front()) return v.front();
+  if (t >= times.back()) return v.back();
+  std::size_t i = std::min(*hint, times.size() - 2);
+  while (i > 0 && times[i] > t) --i;
+  while (i + 2 < times.size() && times[i + 1] <= t) ++i;
+  *hint = i;
   const double w = (t - times[i]) / (times[i + 1] - times[i]);
   return v[i] + w * (v[i + 1] - v[i]);
 }

@@ -12,10 +12,12 @@ SingleTrackModel::SingleTrackModel(const VehicleParams& params, const SteeringPa
       disturbance_(disturbance),
       plain_steering_(steering.torque_limit == 0.0 && steering.dead_band == 0.0 && !steering.hasFriction() &&
                       !steering.compliant()),
+      soft_saturation_(steering.softSaturation()),
       front_(std::move(front)),
       rear_(std::move(rear)),
       inv_V_(1.0 / params.speed),
-      inv_JF_(1.0 / params.steering_inertia) {}
+      inv_JF_(1.0 / params.steering_inertia),
+      speed_k_(2.0 * M_PI / params.speed_wavelength) {}
 
 Eigen::VectorXd SingleTrackModel::initialState(const InitialState& initial) const {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(stateSize());

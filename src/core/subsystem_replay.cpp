@@ -164,7 +164,7 @@ SubsystemReplay replayTracker(const SimConfig& config, const LogSignals& log, co
                           log.at(C::kXDot, q), log.at(C::kYDot, q), log.at(C::kYawRate, q)};
     trace.t.push_back(t);
     trace.measured.push_back(log.samples(C::kDeltaDes)[i]);
-    trace.predicted.push_back(tracker.command(pose).delta_des);
+    trace.predicted.push_back(tracker.command(pose, t).delta_des);  // the excitation runs on log time
   }
   out.traces.push_back(std::move(trace));
   return out;
@@ -224,12 +224,15 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
       }
     }
   }
+  std::size_t s1_cursor = 0;
   auto lateralVelocity = [&](double t) {
     if (sigma1_times.size() < 2 || t < sigma1_times.front() || t > sigma1_times.back()) return log.at(C::kSigma1, t);
-    const auto it = std::upper_bound(sigma1_times.begin(), sigma1_times.end(), t);
-    const std::size_t i = std::min<std::size_t>(static_cast<std::size_t>(it - sigma1_times.begin()), sigma1_times.size() - 1);
-    const std::size_t j = i == 0 ? 0 : i - 1;
-    if (i == j || sigma1_times[i] - sigma1_times[j] > 0.05) return log.at(C::kSigma1, t);  // a gap between intervals
+    std::size_t j = std::min(s1_cursor, sigma1_times.size() - 2);
+    while (j > 0 && sigma1_times[j] > t) --j;
+    while (j + 2 < sigma1_times.size() && sigma1_times[j + 1] <= t) ++j;
+    s1_cursor = j;
+    const std::size_t i = j + 1;
+    if (sigma1_times[i] - sigma1_times[j] > 0.05) return log.at(C::kSigma1, t);  // a gap between intervals
     const double w = (t - sigma1_times[j]) / (sigma1_times[i] - sigma1_times[j]);
     return sigma1_values[j] + w * (sigma1_values[i] - sigma1_values[j]);
   };
@@ -246,11 +249,12 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
   const double limit = config.simulation.divergence.max_steering_angle;
 
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
+  std::size_t hint = 0, torque_hint = 0, sigma1_hint = 0;
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     full[kDelta] = q[0];
     full[kSigma3] = q[1];
     full[kSigma1] = lateralVelocity(t);
-    full[kSigma2] = log.at(C::kYawRate, t);
+    full[kSigma2] = log.at(C::kYawRate, t, &hint);
     for (int i = 0; i < steer_n; ++i) full[steer0 + i] = q[2 + i];
     for (int i = 0; i < front_n; ++i) full[front0 + i] = q[2 + steer_n + i];
   };
@@ -260,11 +264,11 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
     const auto contacts = model.contacts(full.data(), steer);
     const TireForces<double> tf =
         model.frontTire().evaluate(contacts.front, full.data() + front0, full_dot.data() + front0);
-    const double torque = log.at(C::kTorque, t - torque_delay);
+    const double torque = torque_delay == 0.0 ? log.at(C::kTorque, t, &hint) : log.at(C::kTorque, t - torque_delay, &torque_hint);
     const double transmitted = model.steeringSystem(full.data(), torque, full_dot.data());
     q_dot[0] = q[1];
     // Row 3 of eq 3: J_F (sigma2' + sigma3') = M_F + (transmitted torque), sigma2' from the log.
-    q_dot[1] = (tf.aligning_moment + transmitted) / JF - log.at(C::kYawAcceleration, t);
+    q_dot[1] = (tf.aligning_moment + transmitted) / JF - log.at(C::kYawAcceleration, t, &hint);
     for (int i = 0; i < steer_n; ++i) q_dot[2 + i] = full_dot[steer0 + i];
     for (int i = 0; i < front_n; ++i) q_dot[2 + steer_n + i] = full_dot[front0 + i];
   };
@@ -354,14 +358,15 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   // Integrated states: x, y, psi, sigma1, sigma2, the tires'.
   const int n = 5 + front_n + rear_n;
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
+  std::size_t hint = 0;
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     full[kX] = q[0];
     full[kY] = q[1];
     full[kPsi] = q[2];
     full[kSigma1] = q[3];
     full[kSigma2] = q[4];
-    full[kDelta] = log.at(C::kDelta, t);
-    full[kSigma3] = log.at(C::kDeltaRate, t);
+    full[kDelta] = log.at(C::kDelta, t, &hint);
+    full[kSigma3] = log.at(C::kDeltaRate, t, &hint);
     for (int i = 0; i < front_n; ++i) full[front0 + i] = q[5 + i];
     for (int i = 0; i < rear_n; ++i) full[rear0 + i] = q[5 + front_n + i];
   };
@@ -375,7 +380,7 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     const TireForces<double> tr = model.rearTire().evaluate(c.rear, full.data() + rear0, full_dot.data() + rear0);
     double f1, f2, sigma_dot[2];
     model.bodyForces(full.data(), steer, tf, tr, &f1, &f2);
-    model.solveChassisAccelerations(steer, f1, f2, log.at(C::kDeltaAcceleration, t), sigma_dot);
+    model.solveChassisAccelerations(steer, f1, f2, log.at(C::kDeltaAcceleration, t, &hint), sigma_dot);
     q_dot[0] = full_dot[kX];
     q_dot[1] = full_dot[kY];
     q_dot[2] = full_dot[kPsi];

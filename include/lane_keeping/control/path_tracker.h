@@ -5,6 +5,7 @@
 /// The rate is the exact derivative from the delayed velocities, not a finite difference.
 /// The delay itself is the input delay line's business; this class maps one pose to a command.
 #include <memory>
+#include <vector>
 
 #include "lane_keeping/control/path.h"
 #include "lane_keeping/control/tracker_params.h"
@@ -14,11 +15,14 @@ namespace lane_keeping {
 
 class PathTracker {
  public:
-  PathTracker(const TrackerParams& params, std::shared_ptr<const Path> path)
-      : params_(params), path_(std::move(path)) {}
+  PathTracker(const TrackerParams& params, std::shared_ptr<const Path> path);
 
   /// Command from the (already delayed) vehicle state; `errors` receives e_y, e_psi if non-null.
   SteeringCommand command(const PoseSample& pose, PathErrors* errors = nullptr) const;
+  /// Same, plus the identification excitation at time t [s] (tracker.excitation_*; 0 when off).
+  SteeringCommand command(const PoseSample& pose, double t, PathErrors* errors = nullptr) const;
+  /// The excitation multisine and its exact rate at time t [rad, rad/s].
+  SteeringCommand excitation(double t) const;
 
   const TrackerParams& params() const { return params_; }
   const Path& path() const { return *path_; }
@@ -26,6 +30,7 @@ class PathTracker {
  private:
   TrackerParams params_;
   std::shared_ptr<const Path> path_;
+  std::vector<double> excitation_frequency_, excitation_phase_, excitation_amplitude_;
 };
 
 }  // namespace lane_keeping

@@ -14,7 +14,7 @@
 ///   lateral_disturbance  force (N), moment (N m)                 disturbance.lateral_force, .yaw_moment
 ///   pose_bias            y (m), psi (rad)                        tracker.pose_bias_y, .pose_bias_psi (+)
 ///   steering_compliance  stiffness (N m/rad), damping (N m s/rad) steering.column_stiffness, .column_damping
-///   inertia              yaw_scale (1)                           vehicle.yaw_inertia (x scale)
+///   inertia              yaw_scale, mass_scale (1)               vehicle.yaw_inertia, vehicle.mass (x scale)
 #include <functional>
 #include <map>
 #include <string>

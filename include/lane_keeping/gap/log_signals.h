@@ -32,6 +32,8 @@ class LogSignals {
   bool has(Channel c) const { return !values_[c].empty(); }
   /// Linear interpolation; clamps to the first/last sample outside the log.
   double at(Channel c, double t) const;
+  /// Same, starting the search from `*hint` (updated): O(1) for the near-monotone queries of a replay.
+  double at(Channel c, double t, std::size_t* hint) const;
   /// Values at the sample times.
   const std::vector<double>& samples(Channel c) const { return values_[c]; }
   const std::vector<double>& times() const { return log_.t; }

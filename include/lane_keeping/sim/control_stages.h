@@ -26,7 +26,7 @@ class PathTrackingStage {
   /// The command for nextTime() from the state delayed by tau1; advances to the next grid time.
   Stamped<SteeringCommand> produce() {
     const PoseSample delayed = pose_line_.at(next_);
-    Stamped<SteeringCommand> out{next_, tracker_.command(delayed, &last_errors_)};
+    Stamped<SteeringCommand> out{next_, tracker_.command(delayed, nanosecondsToSeconds(next_), &last_errors_)};
     pose_line_.discardBefore(next_);
     next_ += period_;
     return out;

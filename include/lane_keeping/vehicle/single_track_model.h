@@ -109,11 +109,20 @@ class SingleTrackModel {
   };
 
   /// Eq 2: x_dot[kX], x_dot[kY], x_dot[kPsi], x_dot[kDelta].
+  /// Speed of the front axle V at the position x (constant unless vehicle.speed_variation > 0).
+  template <typename T>
+  T speedAt(const T* x) const {
+    using std::sin;
+    if (p_.speed_variation == 0.0) return T(p_.speed);
+    return p_.speed * (1.0 + p_.speed_variation * sin(speed_k_ * x[kX]));
+  }
+
   template <typename T>
   void kinematics(const T* x, const Trig<T>& steer, T* x_dot) const {
     using std::cos;
     using std::sin;
-    const double b = p_.cgToFrontAxle(), V = p_.speed;
+    const double b = p_.cgToFrontAxle();
+    const T V = speedAt(x);
     const T& c = steer.c;
     const T& s = steer.s;
     const T& inv_c = steer.inv_c;
@@ -139,7 +148,9 @@ class SingleTrackModel {
   /// Eq 8 slip angles at the leading points Q (front) and P (rear), Deur slip speeds at the centres.
   template <typename T>
   Contacts<T> contacts(const T* x, const Trig<T>& steer) const {
-    const double d = p_.cg_to_rear_axle, b = p_.cgToFrontAxle(), V = p_.speed;
+    const double d = p_.cg_to_rear_axle, b = p_.cgToFrontAxle();
+    const T V = speedAt(x);
+    const T inv_V = p_.speed_variation == 0.0 ? T(inv_V_) : T(1.0 / V);
     const T& s1 = x[kSigma1];
     const T& s2 = x[kSigma2];
     const T& s3 = x[kSigma3];
@@ -149,8 +160,8 @@ class SingleTrackModel {
     Contacts<T> out;
     out.u = (V - front_lateral * s) * inv_c;
     const double aF = front_.contactHalfLength(), aR = rear_.contactHalfLength();
-    out.front.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c * inv_V_ + s * inv_c;
-    out.front.wheel_speed = T(V);
+    out.front.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c * inv_V + s * inv_c;
+    out.front.wheel_speed = V;
     out.front.lateral_slip_speed = V * s * inv_c - front_lateral * inv_c;  // -(lateral velocity of F across the wheel)
     out.front.yaw_rate = s2 + s3;
     out.rear.tan_slip_angle = -(s1 - (d - aR) * s2) / out.u;
@@ -164,7 +175,10 @@ class SingleTrackModel {
   template <typename T>
   void bodyForces(const T* x, const Trig<T>& steer, const TireForces<T>& tf, const TireForces<T>& tr, T* f1,
                   T* f2) const {
-    const double d = p_.cg_to_rear_axle, b = p_.cgToFrontAxle(), V = p_.speed;
+    using std::cos;
+    using std::sin;
+    const double d = p_.cg_to_rear_axle, b = p_.cgToFrontAxle();
+    const T V = speedAt(x);
     const double m = p_.mass, mF = p_.steering_mass;
     const T& s1 = x[kSigma1];
     const T& s2 = x[kSigma2];
@@ -176,9 +190,25 @@ class SingleTrackModel {
     *f1 = tf.lateral_force * inv_c + tr.lateral_force + inv_c * (-(mF + m) * V + m * s2 * b * s) * s2 + steer_term;
     *f2 = tf.aligning_moment + tr.aligning_moment + b * tf.lateral_force * inv_c - d * tr.lateral_force -
           b * inv_c * (mF * V + m * s1 * s) * s2 + b * steer_term;
+    if (p_.speed_variation != 0.0) {
+      // A varying speed makes the constraint of eq 1 rheonomic: extra inertial terms in f1, f2 (our
+      // Gibbs-Appell derivation, README): Vdot (m + m_F) sin(delta) / cos^2(delta) times (1, l - d).
+      // Vdot = dV/dx x_dot, with x_dot = u cos(psi) - sigma1 sin(psi) and u from row 1 of eq 1.
+      const T u = (V - (s1 + b * s2) * s) * inv_c;
+      const T x_dot = u * cos(x[kPsi]) - s1 * sin(x[kPsi]);
+      const T V_dot = p_.speed * p_.speed_variation * speed_k_ * cos(speed_k_ * x[kX]) * x_dot;
+      const T term = V_dot * (mF + m) * s * inv_c * inv_c;
+      *f1 = *f1 + term;
+      *f2 = *f2 + b * term;
+    }
     if (disturbance_.active()) {
-      *f1 = *f1 + disturbance_.lateral_force;  // a force at G across the body does work on sigma1 only
-      *f2 = *f2 + disturbance_.yaw_moment;
+      // A force at G across the body does work on sigma1 only; gusts vary along the road.
+      T scale(1.0);
+      if (disturbance_.gust_amplitude != 0.0) {
+        scale = 1.0 + disturbance_.gust_amplitude * sin(2.0 * M_PI * x[kX] / disturbance_.gust_wavelength);
+      }
+      *f1 = *f1 + scale * disturbance_.lateral_force;
+      *f2 = *f2 + scale * disturbance_.yaw_moment;
     }
   }
 
@@ -234,9 +264,18 @@ class SingleTrackModel {
       applied = std::fabs(cv) <= p.dead_band ? T(0.0) : T(command - sign(command) * p.dead_band);
     }
     if (p.torque_limit > 0.0) {
-      const double av = toDouble(applied);
-      if (av > p.torque_limit) applied = T(p.torque_limit);
-      if (av < -p.torque_limit) applied = T(-p.torque_limit);
+      if (soft_saturation_) {
+        // A smooth clamp: M / (1 + (M / limit)^4)^(1/4) (equals M well below the limit, tends to it).
+        using std::pow;
+        using std::sqrt;
+        const T r = applied / p.torque_limit;
+        const T r2 = r * r;
+        applied = applied / sqrt(sqrt(1.0 + r2 * r2));
+      } else {
+        const double av = toDouble(applied);
+        if (av > p.torque_limit) applied = T(p.torque_limit);
+        if (av < -p.torque_limit) applied = T(-p.torque_limit);
+      }
     }
     const T& rate = x[kSigma3];
     int next = steeringStateOffset();
@@ -270,10 +309,12 @@ class SingleTrackModel {
   SteeringParams steering_;
   DisturbanceParams disturbance_;
   bool plain_steering_;
+  bool soft_saturation_;
   Tire front_;
   Tire rear_;
   double inv_V_;   ///< 1 / V
   double inv_JF_;  ///< 1 / J_F
+  double speed_k_; ///< 2 pi / speed_wavelength
 };
 
 /// Builds the model of a configuration: static axle loads (DESIGN §3) and one tire per axle; rigid,

@@ -21,6 +21,7 @@ namespace lane_keeping {
 
 struct SteeringParams {
   double torque_limit = 0.0;        ///< [N m]; 0 = unlimited
+  std::string saturation = "hard";  ///< hard: clamp; soft: M / (1 + (M / limit)^4)^(1/4)
   double dead_band = 0.0;           ///< [N m]; 0 = none
   std::string friction_model = "tanh";  ///< tanh | lugre
   double coulomb_friction = 0.0;    ///< T_c [N m]
@@ -34,6 +35,7 @@ struct SteeringParams {
   double column_damping = 0.0;      ///< c_c [N m s/rad]
   double column_inertia = 0.02;     ///< J_c [kg m^2]
 
+  bool softSaturation() const { return saturation == "soft"; }
   bool hasFriction() const { return coulomb_friction > 0.0 || breakaway_friction > 0.0 || viscous_friction > 0.0; }
   bool lugreFriction() const { return friction_model == "lugre" && (coulomb_friction > 0.0 || breakaway_friction > 0.0); }
   bool compliant() const { return column_stiffness > 0.0; }
@@ -43,6 +45,8 @@ struct SteeringParams {
   void visit(ParamVisitor& v, const std::string& prefix) {
     v.number(prefix + "torque_limit", torque_limit, "N m", Range::nonNegative(),
              "saturation of the applied steering torque; 0 = unlimited");
+    v.choice(prefix + "saturation", saturation, {"hard", "soft"},
+             "torque limit shape: hard clamp, or soft (M / (1 + (M / limit)^4)^(1/4))");
     v.number(prefix + "dead_band", dead_band, "N m", Range::nonNegative(), "torque dead band; 0 = none");
     v.choice(prefix + "friction_model", friction_model, {"tanh", "lugre"},
              "kingpin friction: tanh (Coulomb smoothed + viscous) or lugre (Deur eq 9, one state)");
@@ -65,14 +69,19 @@ struct SteeringParams {
 
 /// External loads on the car body (wind, road bank): a lateral force at G and a yaw moment.
 struct DisturbanceParams {
-  double lateral_force = 0.0;  ///< [N], body y at G, left positive
-  double yaw_moment = 0.0;     ///< [N m], counter-clockwise positive
+  double lateral_force = 0.0;   ///< [N], body y at G, left positive
+  double yaw_moment = 0.0;      ///< [N m], counter-clockwise positive
+  double gust_amplitude = 0.0;  ///< fraction: both scale with (1 + a sin(2 pi x / gust_wavelength))
+  double gust_wavelength = 120.0;  ///< [m]
 
   bool active() const { return lateral_force != 0.0 || yaw_moment != 0.0; }
   void visit(ParamVisitor& v, const std::string& prefix) {
     v.number(prefix + "lateral_force", lateral_force, "N", Range::any(),
-             "constant lateral force at G in the body frame (crosswind, road bank), left positive");
-    v.number(prefix + "yaw_moment", yaw_moment, "N m", Range::any(), "constant yaw moment on the body");
+             "lateral force at G in the body frame (crosswind, road bank), left positive");
+    v.number(prefix + "yaw_moment", yaw_moment, "N m", Range::any(), "yaw moment on the body");
+    v.number(prefix + "gust_amplitude", gust_amplitude, "", Range::closed(0.0, 1.0),
+             "gusts along the road: force and moment scale with (1 + a sin(2 pi x / gust_wavelength))");
+    v.number(prefix + "gust_wavelength", gust_wavelength, "m", Range::positive(), "wavelength of the gusts");
   }
 };
 

@@ -17,6 +17,8 @@ struct VehicleParams {
   double steering_inertia = 0.25;    ///< J_F [kg m^2], about F
   double speed = 15.0;               ///< V [m/s], wheel-direction speed of F (constraint of eq 1)
   double gravity = 9.81;             ///< g [m/s^2]
+  double speed_variation = 0.0;      ///< fraction: V(x) = V (1 + a sin(2 pi x / wavelength)); 0 = constant V
+  double speed_wavelength = 150.0;   ///< [m] of the speed variation
 
   /// Distance G -> front axle F, (l - d) [m].
   double cgToFrontAxle() const { return wheelbase - cg_to_rear_axle; }
@@ -37,6 +39,9 @@ struct VehicleParams {
     v.number(prefix + "speed", speed, "m/s", Range::positive(),
              "V, constant wheel-direction speed of the front axle (non-holonomic constraint, eq 1)");
     v.number(prefix + "gravity", gravity, "m/s^2", Range::positive(), "g, for the static axle loads");
+    v.number(prefix + "speed_variation", speed_variation, "", Range::closed(0.0, 0.5),
+             "speed varying along the road: V(x) = V (1 + a sin(2 pi x / speed_wavelength)); 0 = constant");
+    v.number(prefix + "speed_wavelength", speed_wavelength, "m", Range::positive(), "wavelength of the speed variation");
   }
 
   /// Cross-field rules (ranges are checked by RangeChecker through visit()).

@@ -1,0 +1,55 @@
+#pragma once
+/// The withheld-effect benchmark of the gap diagnosis (DESIGN §5, issue 5 item 3).
+///
+/// A truth generator makes "real" logs: the closed loop of a truth configuration — the nominal one
+/// plus one hidden effect in a *higher-fidelity form than the candidate model* (distributed LuGre
+/// tires with carcass relaxation for tire lag, LuGre friction with a Stribeck peak for steering
+/// friction, a soft saturation for the torque limit, a different contact length for cornering
+/// stiffness, partial sliding friction for road friction, gusts along the road for the lateral
+/// disturbance, a bias varying along the road for the pose bias, a heavier steering column for
+/// compliance, mass with yaw inertia for inertia, delays that are not multiples of the step) — at two
+/// magnitudes and on two manoeuvres, plus logs with no effect and logs with effects outside the
+/// candidate list (steering dead band, a delay on the steering-angle sensor only, a varying speed).
+/// Every log gets sensor noise. The diagnosis sees only the log and the nominal configuration.
+#include <string>
+#include <vector>
+
+#include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/gap/gap_log.h"
+
+namespace lane_keeping {
+
+struct SensorNoise {
+  double position = 0.01;     ///< x, y [m]
+  double heading = 5e-4;      ///< psi [rad]
+  double yaw_rate = 2e-3;     ///< [rad/s]
+  double steering = 2e-4;     ///< delta [rad]
+  double steering_rate = 5e-3;  ///< [rad/s]
+  double torque = 0.2;        ///< [N m]
+  double lateral_acceleration = 0.02;  ///< [m/s^2]
+  double speed = 0.02;        ///< [m/s]
+};
+
+struct BenchmarkCase {
+  std::string id;                  ///< e.g. "steering_friction-large-sinusoid"
+  std::string category;            ///< in_list | none | out_of_list
+  std::string truth;               ///< candidate name, "none", or the out-of-list effect's name
+  std::string magnitude;           ///< small | large (empty for none)
+  std::string manoeuvre;           ///< lane_change | sinusoid
+  std::vector<std::string> truth_overlay;  ///< key=value on top of the nominal configuration
+  unsigned seed = 1;               ///< noise seed
+};
+
+/// The nominal configuration of a manoeuvre (lumped LuGre tires, the paper's vehicle, k_psi = 0.8,
+/// k_y = 0.05 1/m, tau1 = 0.2 s, tau2 = 0.1 ms, p = 1000, an identification multisine on delta_des;
+/// 30 s logged at 500 Hz).
+SimConfig benchmarkNominal(const std::string& manoeuvre);
+/// All cases: 11 effects x 2 magnitudes x 2 manoeuvres, `none_per_manoeuvre` no-effect logs per
+/// manoeuvre, and 3 out-of-list effects x 2 magnitudes x 2 manoeuvres.
+std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre = 6);
+/// Simulates the truth of a case and returns its noisy log (throws if the truth run diverges).
+GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise = {}, double log_rate = 500.0);
+/// Adds seeded Gaussian noise to every measured column.
+void addSensorNoise(GapLog& log, const SensorNoise& noise, unsigned seed);
+
+}  // namespace lane_keeping

@@ -1,0 +1,219 @@
+// lk_gap_benchmark: the withheld-effect benchmark of the gap diagnosis.
+//   lk_gap_benchmark run      --out DIR [--cases SUBSTRING] [--threads N]   generate + diagnose + score
+//   lk_gap_benchmark generate --out DIR [--cases SUBSTRING] [--log-rate HZ]
+//   lk_gap_benchmark diagnose --dir DIR [--cases SUBSTRING] [--threads N]
+//   lk_gap_benchmark score    --dir DIR
+// `generate` writes DIR/logs/<case>.csv, DIR/nominal/<manoeuvre>.yaml, DIR/cases.json (case id,
+// manoeuvre, log file: no truth) and DIR/truth.json (the hidden effects). `diagnose` reads only
+// cases.json, the logs and the nominal configurations, and writes DIR/reports/<case>/report.json.
+// `score` compares the verdicts with truth.json and prints the confusion matrix, top-1 accuracy,
+// median held-out shrink when right, false alarms on no-effect logs and the out-of-list verdicts.
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/gap/benchmark_cases.h"
+#include "lane_keeping/gap/diagnosis.h"
+#include "lane_keeping/gap/gap_report.h"
+
+using namespace lane_keeping;
+using nlohmann::json;
+
+namespace {
+
+void makeDir(const std::string& path) { ::mkdir(path.c_str(), 0755); }
+
+json readJson(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw InputError(path + ": cannot open");
+  return json::parse(in);
+}
+
+void writeJson(const std::string& path, const json& j) {
+  std::ofstream out(path);
+  if (!out) throw InputError(path + ": cannot write");
+  out << j.dump(2) << "\n";
+}
+
+std::vector<BenchmarkCase> selectCases(const std::string& filter) {
+  std::vector<BenchmarkCase> out;
+  for (const auto& c : benchmarkCases()) {
+    if (filter.empty() || c.id.find(filter) != std::string::npos) out.push_back(c);
+  }
+  return out;
+}
+
+void generate(const std::string& dir, const std::string& filter, double log_rate) {
+  makeDir(dir);
+  makeDir(dir + "/logs");
+  makeDir(dir + "/nominal");
+  json cases = json::array(), truth = json::array();
+  for (const std::string m : {"lane_change", "sinusoid"}) {
+    std::ofstream out(dir + "/nominal/" + m + ".yaml");
+    out << "# nominal configuration of the gap benchmark, manoeuvre " << m << "\n";
+    benchmarkNominal(m).print(out);
+  }
+  for (const auto& c : selectCases(filter)) {
+    const auto start = std::chrono::steady_clock::now();
+    const GapLog log = generateBenchmarkLog(c, SensorNoise{}, log_rate);
+    const std::string file = "logs/" + c.id + ".csv";
+    writeCsvLog(dir + "/" + file, log);
+    cases.push_back({{"id", c.id}, {"manoeuvre", c.manoeuvre}, {"log", file}});
+    truth.push_back({{"id", c.id},
+                     {"category", c.category},
+                     {"truth", c.truth},
+                     {"magnitude", c.magnitude},
+                     {"manoeuvre", c.manoeuvre},
+                     {"overlay", c.truth_overlay},
+                     {"seed", c.seed}});
+    std::fprintf(stderr, "[generate] %-44s %5zu rows  %.1f s\n", c.id.c_str(), log.size(),
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+  writeJson(dir + "/cases.json", cases);
+  writeJson(dir + "/truth.json", truth);
+}
+
+void diagnose(const std::string& dir, const std::string& filter, int threads) {
+  makeDir(dir + "/reports");
+  const json cases = readJson(dir + "/cases.json");  // no truth in here
+  for (const auto& c : cases) {
+    const std::string id = c["id"];
+    if (!filter.empty() && id.find(filter) == std::string::npos) continue;
+    const auto start = std::chrono::steady_clock::now();
+    const SimConfig nominal = loadSimConfig({dir + "/nominal/" + c["manoeuvre"].get<std::string>() + ".yaml"});
+    const GapLog log = readCsvLog(dir + "/" + c["log"].get<std::string>());
+    DiagnosisOptions options;
+    options.threads = threads;
+    const GapReport report = diagnoseGap(nominal, {log}, {}, options);
+    makeDir(dir + "/reports/" + id);
+    writeGapReportJson(dir + "/reports/" + id + "/report.json", report);
+    std::fprintf(stderr, "[diagnose] %-44s -> %-20s conf %.2f shrink %5.1f %%  %.1f s\n", id.c_str(),
+                 report.verdict.effect.c_str(), report.verdict.confidence, 100.0 * report.verdict.shrink,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+}
+
+int score(const std::string& dir) {
+  const json truth = readJson(dir + "/truth.json");
+  std::vector<std::string> labels = candidateEffectNames();
+  labels.push_back("unexplained");
+  std::map<std::string, std::map<std::string, int>> confusion;
+  int in_list = 0, correct = 0, none = 0, false_alarms = 0;
+  std::vector<double> shrinks;
+  std::vector<std::string> out_of_list;
+  std::vector<std::string> misses;
+  for (const auto& t : truth) {
+    const std::string id = t["id"];
+    const std::string path = dir + "/reports/" + id + "/report.json";
+    std::ifstream probe(path);
+    if (!probe) continue;
+    const GapReport r = readGapReportJson(path);
+    const std::string verdict = r.verdict.effect;
+    const std::string category = t["category"];
+    const std::string effect = t["truth"];
+    if (category == "in_list") {
+      ++in_list;
+      confusion[effect][verdict]++;
+      if (verdict == effect) {
+        ++correct;
+        shrinks.push_back(r.verdict.shrink);
+      } else {
+        misses.push_back(id + " -> " + verdict);
+      }
+    } else if (category == "none") {
+      ++none;
+      confusion["none"][verdict]++;
+      if (verdict != "unexplained") {
+        ++false_alarms;
+        misses.push_back(id + " -> " + verdict + " (false alarm)");
+      }
+    } else {
+      char line[256];
+      std::snprintf(line, sizeof(line), "  %-36s -> %-20s conf %.2f shrink %5.1f %%  where %s", id.c_str(), verdict.c_str(),
+                    r.verdict.confidence, 100.0 * r.verdict.shrink, r.where.subsystem.c_str());
+      out_of_list.push_back(line);
+    }
+  }
+  std::printf("Confusion matrix (rows: hidden effect; columns: verdict)\n%-21s", "");
+  for (std::size_t j = 0; j < labels.size(); ++j) std::printf(" %3zu", j + 1);
+  std::printf("\n");
+  std::vector<std::string> rows = candidateEffectNames();
+  rows.push_back("none");
+  for (const auto& row : rows) {
+    std::printf("%-21s", row.c_str());
+    for (const auto& col : labels) {
+      const int n = confusion[row][col];
+      std::printf(" %3s", n ? std::to_string(n).c_str() : ".");
+    }
+    std::printf("\n");
+  }
+  std::printf("columns: ");
+  for (std::size_t j = 0; j < labels.size(); ++j) std::printf("%zu=%s ", j + 1, labels[j].c_str());
+  std::printf("\n\n");
+  std::sort(shrinks.begin(), shrinks.end());
+  const double median = shrinks.empty() ? 0.0 : shrinks[shrinks.size() / 2];
+  std::printf("top-1 accuracy (in-list effects):      %d / %d = %.1f %%   (target >= 90 %%)\n", correct, in_list,
+              in_list ? 100.0 * correct / in_list : 0.0);
+  std::printf("median held-out shrink when right:     %.1f %%   (target >= 80 %%)\n", 100.0 * median);
+  std::printf("no-effect logs judged unexplained:     %d / %d = %.1f %%   (target >= 90 %%)\n", none - false_alarms, none,
+              none ? 100.0 * (none - false_alarms) / none : 0.0);
+  std::printf("\nOut-of-list effects:\n");
+  for (const auto& line : out_of_list) std::printf("%s\n", line.c_str());
+  if (!misses.empty()) {
+    std::printf("\nMisses:\n");
+    for (const auto& m : misses) std::printf("  %s\n", m.c_str());
+  }
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc < 2) {
+    std::cerr << "usage: lk_gap_benchmark run|generate|diagnose|score --out/--dir DIR [--cases SUBSTRING] [--threads N]\n";
+    return 2;
+  }
+  const std::string command = argv[1];
+  std::string dir, filter;
+  int threads = 2;
+  double log_rate = 500.0;
+  for (int i = 2; i + 1 < argc; i += 2) {
+    const std::string arg = argv[i];
+    if (arg == "--out" || arg == "--dir") dir = argv[i + 1];
+    else if (arg == "--cases") filter = argv[i + 1];
+    else if (arg == "--threads") threads = std::atoi(argv[i + 1]);
+    else if (arg == "--log-rate") log_rate = std::atof(argv[i + 1]);
+    else {
+      std::cerr << "lk_gap_benchmark: unknown argument '" << arg << "'\n";
+      return 2;
+    }
+  }
+  if (dir.empty()) {
+    std::cerr << "lk_gap_benchmark: --out/--dir DIR is required\n";
+    return 2;
+  }
+  try {
+    if (command == "generate" || command == "run") generate(dir, filter, log_rate);
+    if (command == "diagnose" || command == "run") diagnose(dir, filter, threads);
+    if (command == "score" || command == "run") return score(dir);
+    if (command != "generate" && command != "diagnose") {
+      std::cerr << "lk_gap_benchmark: unknown command '" << command << "'\n";
+      return 2;
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "lk_gap_benchmark: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
