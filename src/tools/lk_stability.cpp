@@ -1,0 +1,183 @@
+// lk_stability: linear stability of the delayed lane-keeping loop about straight-line motion
+// (Beregi et al. §3): critical delays, rightmost characteristic roots, stability charts.
+//
+//   lk_stability critical  --config FILE [--set key=value ...]   one JSON object on stdout
+//   lk_stability roots     --config FILE ...                      rightmost roots (JSON)
+//   lk_stability boundary  --config FILE ... --param KEY --from A --to B [--steps N] [--uniform]
+//   lk_stability linearize --config FILE ...                      the DDE matrices (JSON)
+//   lk_stability readings  --config FILE ...                      critical tau2 per equation reading (JSON)
+//   lk_stability chart     --config FILE ... --x KEY:MIN:MAX:N --y KEY:MIN:MAX:N
+//                          [--series KEY=v1,v2,..] [--panels KEY=v1,v2,..] --out PREFIX
+//   lk_stability fig3|fig4|fig5 --config FILE ... --out DIR [--n N]   the paper's charts
+// Charts: PREFIX.csv, PREFIX.json (axes, units, series), PREFIX.png (scripts/plot_stability.py
+// with Debian's /usr/bin/python3 + matplotlib).
+// Exit status: 0 ok, 2 bad arguments or configuration, 1 other error (plotting included).
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <malloc.h>
+#include <string>
+
+#include "lane_keeping/analysis/closed_loop_linearization.h"
+#include "lane_keeping/analysis/config_parameter.h"
+#include "lane_keeping/analysis/dde_spectrum.h"
+#include "lane_keeping/analysis/equation_readings.h"
+#include "lane_keeping/analysis/stability_boundary.h"
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/sim_config.h"
+#include "stability_charts.h"
+#include "stability_cli.h"
+
+namespace {
+
+using namespace lane_keeping;
+using namespace lane_keeping::stability_cli;
+
+int commandCritical(const Args& a, const SimConfig& c) {
+  const auto start = std::chrono::steady_clock::now();
+  const SpectrumOptions so = spectrumOptions(a, 24, 10);
+  const ClosedLoopLinearization lin = linearizeClosedLoop(c);
+  const Spectrum here = computeSpectrum(systemOf(a, c), so);
+  ScanOptions scan;
+  scan.start = 1e-5;
+  scan.end = a.tau2_max;
+  scan.steps = a.steps;
+  scan.spectrum = so;
+  if (!(scan.end > scan.start)) badArguments("--tau2-max must exceed 1e-5 s");
+  const Crossing cross = findFirstCrossing(familyOf(a, c, "tau2"), scan);
+  json j;
+  j["tau2_critical_s"] = cross.found ? json(cross.parameter) : json(nullptr);
+  j["frequency_hz"] = cross.found ? json(cross.frequencyHz()) : json(nullptr);
+  j["omega_rad_s"] = cross.found ? json(cross.angularFrequency()) : json(nullptr);
+  j["found"] = cross.found;
+  if (!cross.found) j["reason"] = "tau2 scan [s]: " + cross.reason;
+  if (cross.found) j["crossing_root"] = rootJson(cross.root);
+  const bool equal_tau2 = c.delays.desired_steering_to_actuator == c.delays.steering_angle_to_actuator;
+  j["tau2_configured_s"] = equal_tau2 ? json(c.delays.steering_angle_to_actuator) : json(nullptr);
+  if (!equal_tau2) j["note"] = "the configured actuator delays differ; tau2_critical_s sets both to one value";
+  if (cross.found && equal_tau2) j["tau2_margin"] = cross.parameter / c.delays.steering_angle_to_actuator;
+  j["stable_at_configured"] = here.abscissa() < 0.0;
+  j["spectral_abscissa_at_configured"] = here.abscissa();
+  j["rightmost_roots"] = spectrumJson(here, a.count);
+  j["point"] = pointJson(c);
+  j["equations"] = a.reading.empty() ? "printed" : a.reading;
+  j["dde"] = ddeJson(lin, &here, so.degree);
+  j["scan"] = {{"tau2_from_s", scan.start}, {"tau2_to_s", scan.end}, {"steps", scan.steps}, {"spectra", cross.spectra}};
+  j["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  printJson(j);
+  return 0;
+}
+
+int commandRoots(const Args& a, const SimConfig& c) {
+  const SpectrumOptions so = spectrumOptions(a, 24, 10);
+  const ClosedLoopLinearization lin = linearizeClosedLoop(c);
+  const Spectrum s = computeSpectrum(systemOf(a, c), so);
+  printJson(json{{"equations", a.reading.empty() ? "printed" : a.reading},
+                 {"stable", s.abscissa() < 0.0},
+                 {"spectral_abscissa", s.abscissa()},
+                 {"unstable_roots", s.unstableCount()},
+                 {"rightmost_roots", spectrumJson(s, a.count)},
+                 {"point", pointJson(c)},
+                 {"dde", ddeJson(lin, &s, so.degree)}});
+  return 0;
+}
+
+int commandBoundary(const Args& a, const SimConfig& c) {
+  if (a.param.empty() || std::isnan(a.from) || std::isnan(a.to)) badArguments("boundary needs --param KEY --from A --to B");
+  const ConfigParameterInfo info = configParameterInfo(a.param);
+  ScanOptions scan;
+  scan.start = a.from;
+  scan.end = a.to;
+  scan.steps = a.steps;
+  scan.geometric = !a.uniform;
+  scan.spectrum = spectrumOptions(a, 24, 10);
+  if (scan.geometric && !(a.from > 0 && a.to > 0)) badArguments("a geometric scan needs --from, --to > 0 (or --uniform)");
+  const Crossing cross = findFirstCrossing(familyOf(a, c, a.param), scan);
+  json j{{"param", a.param}, {"unit", info.unit}, {"equations", a.reading.empty() ? "printed" : a.reading},
+         {"found", cross.found},
+         {"critical", cross.found ? json(cross.parameter) : json(nullptr)},
+         {"frequency_hz", cross.found ? json(cross.frequencyHz()) : json(nullptr)},
+         {"spectral_abscissa_at_from", cross.abscissa_start}, {"point", pointJson(c)}};
+  if (cross.found) j["crossing_root"] = rootJson(cross.root);
+  if (!cross.found) j["reason"] = cross.reason;
+  printJson(j);
+  return 0;
+}
+
+int commandLinearize(const Args&, const SimConfig& c) {
+  const ClosedLoopLinearization lin = linearizeClosedLoop(c);
+  auto matrix = [](const Eigen::MatrixXd& m) {
+    json rows = json::array();
+    for (int i = 0; i < m.rows(); ++i) {
+      json row = json::array();
+      for (int k = 0; k < m.cols(); ++k) row.push_back(m(i, k));
+      rows.push_back(row);
+    }
+    return rows;
+  };
+  json terms = json::array();
+  for (const auto& t : lin.dde.delayed) terms.push_back({{"delay_s", t.delay}, {"matrix", matrix(t.matrix)}});
+  json j = ddeJson(lin, nullptr, 0);
+  j["a0"] = matrix(lin.dde.a0);
+  j["delayed"] = terms;
+  j["tracker_jacobian"] = matrix(lin.tracker_jacobian);
+  j["point"] = pointJson(c);
+  printJson(j);
+  return 0;
+}
+
+int commandReadings(const Args& a, const SimConfig& c) {
+  ScanOptions scan;
+  scan.start = 1e-5;
+  scan.end = a.tau2_max;
+  scan.steps = a.steps;
+  scan.spectrum = spectrumOptions(a, 24, 10);
+  json rows = json::array();
+  double printed = NAN;
+  for (const auto& reading : candidateReadings()) {
+    const Crossing cross = findFirstCrossing(readingFamily(c, reading), scan);
+    if (reading.name == "printed") printed = cross.parameter;
+    json row{{"reading", reading.name}, {"description", reading.description}, {"found", cross.found},
+             {"tau2_critical_s", cross.found ? json(cross.parameter) : json(nullptr)},
+             {"frequency_hz", cross.found ? json(cross.frequencyHz()) : json(nullptr)}};
+    if (cross.found && std::isfinite(printed)) row["change_vs_printed"] = cross.parameter / printed - 1.0;
+    if (cross.found) row["paper_fig9_over_critical"] = 1.9019505e-3 / cross.parameter - 1.0;
+    rows.push_back(row);
+  }
+  printJson(json{{"point", pointJson(c)}, {"paper_fig9_tau2_s", 1.9019505e-3}, {"readings", rows}});
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  // Chart points allocate and free ~100 kB matrices; without this glibc returns the heap top to the
+  // kernel after every point and half the run is spent in brk and page faults.
+  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  mallopt(M_TOP_PAD, 16 << 20);
+  mallopt(M_MMAP_THRESHOLD, 64 << 20);
+  const Args args = parseArgs(argc, argv);
+  try {
+    const SimConfig config = loadSimConfig(args.files, args.sets);
+    if (config.path.type != "straight") {
+      std::cerr << "lk_stability: note: path.type = " << config.path.type
+                << " is not used; the analysis linearises about straight-line motion on a straight lane\n";
+    }
+    if (args.command == "critical") return commandCritical(args, config);
+    if (args.command == "roots") return commandRoots(args, config);
+    if (args.command == "boundary") return commandBoundary(args, config);
+    if (args.command == "linearize") return commandLinearize(args, config);
+    if (args.command == "readings") return commandReadings(args, config);
+    if (args.command == "chart") return commandChart(args, config);
+    if (args.command == "fig3") return commandFig3(args, config);
+    if (args.command == "fig4") return commandFig4(args, config);
+    if (args.command == "fig5") return commandFig5(args, config);
+    badArguments("unknown command '" + args.command + "'");
+  } catch (const ConfigError& e) {
+    std::cerr << "lk_stability: " << e.what() << "\n";
+    return 2;
+  } catch (const std::exception& e) {
+    std::cerr << "lk_stability: " << e.what() << "\n";
+    return 1;
+  }
+}

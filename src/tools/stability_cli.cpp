@@ -1,0 +1,180 @@
+#include "stability_cli.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <iostream>
+
+#include "lane_keeping/analysis/config_parameter.h"
+#include "lane_keeping/analysis/equation_readings.h"
+
+namespace lane_keeping {
+namespace stability_cli {
+
+void usage(std::ostream& out) {
+  out << "usage: lk_stability COMMAND --config FILE [--config FILE ...] [--set key=value ...] [--tire MODEL] [options]\n"
+         "commands:\n"
+         "  critical    critical lower-level delay tau2 (both actuator delays moved together) and the\n"
+         "              crossing frequency, plus the rightmost roots at the configured tau2: one JSON object\n"
+         "  roots       rightmost characteristic roots at the configured point (JSON)\n"
+         "  boundary    first loss of stability along --param KEY from --from A to --to B (JSON)\n"
+         "  linearize   the delay-differential system x' = A0 x + sum A_j x(t - tau_j) (JSON)\n"
+         "  readings    critical tau2 under alternative readings of the paper's equations (JSON)\n"
+         "  chart       stability chart over --x KEY:MIN:MAX:N and --y KEY:MIN:MAX:N, optional\n"
+         "              --series KEY=v1,v2,... (one boundary per value) and --panels KEY=v1,v2,...\n"
+         "  fig3        Beregi Fig 3: (k_psi, k_y) for tau1 in panels and p in series, tau2 = 0.1 ms\n"
+         "  fig4        Beregi Fig 4: (k_psi, k_y) for several tau2, tau1 = 0.2 s, p = 4000\n"
+         "  fig5        Beregi Fig 5: (p, tau2), k_psi = 0.5, k_y = 0.01 1/m, tau1 = 0.2 s\n"
+         "options:\n"
+         "  --tau2 S          shorthand for both actuator delays (delays.desired_steering_to_actuator and\n"
+         "                    delays.steering_angle_to_actuator), in seconds\n"
+         "  --degree M        Chebyshev degree per delay line (default 24; charts 20)\n"
+         "  --count K         roots to report (default 6)\n"
+         "  --tau2-max S      end of the tau2 scan of `critical` (default 0.05 s)\n"
+         "  --out PREFIX|DIR  chart output prefix (chart) or directory (fig3-5)\n"
+         "  --n N             grid points per axis for fig3-5 (default 100)\n"
+         "  --threads T       worker threads for charts (default: all cores)\n"
+         "  --title TEXT      chart title;  --no-plot  CSV and JSON only\n"
+         "  --reading NAME    use an alternative reading of the paper's equations (see `readings`)\n"
+         "  KEY is a numeric configuration key (lk_simulate --print-config) or tau2.\n";
+}
+
+
+[[noreturn]] void badArguments(const std::string& message) {
+  std::cerr << "lk_stability: " << message << "\n";
+  usage(std::cerr);
+  std::exit(2);
+}
+
+double parseNumber(const std::string& text, const std::string& what) {
+  try {
+    std::size_t used = 0;
+    const double v = std::stod(text, &used);
+    if (used != text.size() || !std::isfinite(v)) throw std::invalid_argument(text);
+    return v;
+  } catch (const std::exception&) {
+    badArguments(what + ": '" + text + "' is not a finite number");
+  }
+}
+
+int parseInt(const std::string& text, const std::string& what, int min) {
+  const double v = parseNumber(text, what);
+  if (v != std::round(v) || v < min) badArguments(what + ": '" + text + "' must be a whole number >= " + std::to_string(min));
+  return static_cast<int>(v);
+}
+
+Args parseArgs(int argc, char** argv) {
+  Args a;
+  if (argc < 2) badArguments("missing command");
+  a.command = argv[1];
+  if (a.command == "--help" || a.command == "-h") {
+    usage(std::cout);
+    std::exit(0);
+  }
+  for (int i = 2; i < argc; ++i) {
+    const std::string arg = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) badArguments(arg + " needs a value");
+      return argv[++i];
+    };
+    if (arg == "--config") a.files.push_back(value());
+    else if (arg == "--set") a.sets.push_back(value());
+    else if (arg == "--tire") {
+      const std::string model = value();
+      a.sets.push_back("tire.front.model=" + model);
+      a.sets.push_back("tire.rear.model=" + model);
+    } else if (arg == "--tau2") {
+      const std::string seconds = value();
+      a.sets.push_back("delays.desired_steering_to_actuator=" + seconds);
+      a.sets.push_back("delays.steering_angle_to_actuator=" + seconds);
+    } else if (arg == "--degree") a.degree = parseInt(value(), "--degree", 2);
+    else if (arg == "--count") a.count = parseInt(value(), "--count", 1);
+    else if (arg == "--n") a.n = parseInt(value(), "--n", 2);
+    else if (arg == "--threads") a.threads = parseInt(value(), "--threads", 1);
+    else if (arg == "--steps") a.steps = parseInt(value(), "--steps", 1);
+    else if (arg == "--tau2-max") a.tau2_max = parseNumber(value(), "--tau2-max");
+    else if (arg == "--out") a.out = value();
+    else if (arg == "--x") a.x = value();
+    else if (arg == "--y") a.y = value();
+    else if (arg == "--series") a.series = value();
+    else if (arg == "--panels") a.panels = value();
+    else if (arg == "--title") a.title = value();
+    else if (arg == "--param") a.param = value();
+    else if (arg == "--reading") a.reading = value();
+    else if (arg == "--from") a.from = parseNumber(value(), "--from");
+    else if (arg == "--to") a.to = parseNumber(value(), "--to");
+    else if (arg == "--uniform") a.uniform = true;
+    else if (arg == "--no-plot") a.plot = false;
+    else if (arg == "--help" || arg == "-h") {
+      usage(std::cout);
+      std::exit(0);
+    } else badArguments("unknown argument '" + arg + "'");
+  }
+  return a;
+}
+
+json rootJson(Complex r, bool refined) {
+  return json{{"re", r.real()}, {"im", r.imag()}, {"frequency_hz", std::fabs(r.imag()) / (2 * M_PI)}, {"refined", refined}};
+}
+
+json spectrumJson(const Spectrum& s, int count) {
+  json roots = json::array();
+  for (std::size_t i = 0; i < s.roots.size() && static_cast<int>(i) < count; ++i) {
+    roots.push_back(rootJson(s.roots[i].value, s.roots[i].refined));
+  }
+  return roots;
+}
+
+json ddeJson(const ClosedLoopLinearization& lin, const Spectrum* spectrum, int degree) {
+  json delays = json::array();
+  for (const auto& t : lin.dde.delayed) delays.push_back(t.delay);
+  json d{{"states", lin.dde.state_names}, {"dropped_states", lin.dropped_states}, {"delays_s", delays},
+         {"k_p", lin.k_p}, {"k_d", lin.k_d}, {"k_i", lin.k_i}};
+  if (spectrum) {
+    d["discretisation"] = {{"method", "Chebyshev collocation of each delay line (infinitesimal generator) + Newton on det Delta"},
+                           {"degree_per_delay_line", degree},
+                           {"delay_line_ranks", spectrum->ranks},
+                           {"matrix_order", spectrum->dimension}};
+  }
+  return d;
+}
+
+json pointJson(const SimConfig& c) {
+  return json{{"k_psi", c.tracker.k_psi},
+              {"k_y", c.tracker.k_y},
+              {"p", c.actuator.p},
+              {"tau1_s", c.delays.pose_to_tracker},
+              {"tau_desired_s", c.delays.desired_steering_to_actuator},
+              {"tau_measured_s", c.delays.steering_angle_to_actuator},
+              {"tau_torque_s", c.delays.torque_to_plant},
+              {"tire_front", c.tire_front.model},
+              {"tire_rear", c.tire_rear.model}};
+}
+
+SpectrumOptions spectrumOptions(const Args& a, int default_degree, int seeds) {
+  SpectrumOptions o;
+  o.degree = a.degree > 0 ? a.degree : default_degree;
+  o.seeds = std::max(seeds, a.count + 4);
+  return o;
+}
+
+void printJson(const json& j) { std::cout << j.dump(2) << "\n"; }
+
+LinearDelaySystem systemOf(const Args& a, const SimConfig& c) {
+  if (a.reading.empty()) return linearizeClosedLoop(c).dde;
+  return linearizeUnderReading(c, readingByName(a.reading));
+}
+
+SystemFamily familyOf(const Args& a, const SimConfig& c, const std::string& key) {
+  if (a.reading.empty()) return configFamily(c, key);
+  configParameterInfo(key);
+  const EquationReading reading = readingByName(a.reading);
+  if (key == "tau2") return readingFamily(c, reading);
+  return [c, key, reading](double v) {
+    SimConfig at = c;
+    setConfigNumber(at, key, v);
+    return linearizeUnderReading(at, reading);
+  };
+}
+
+}  // namespace stability_cli
+}  // namespace lane_keeping

@@ -1,0 +1,50 @@
+#pragma once
+// Command-line plumbing shared by lk_stability's sub-commands: arguments, JSON renderings, and the
+// loop's delay system under the printed equations or an alternative reading (--reading).
+#include <iosfwd>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "lane_keeping/analysis/closed_loop_linearization.h"
+#include "lane_keeping/analysis/dde_spectrum.h"
+#include "lane_keeping/analysis/stability_boundary.h"
+#include "lane_keeping/config/sim_config.h"
+
+namespace lane_keeping {
+namespace stability_cli {
+
+using json = nlohmann::ordered_json;
+
+struct Args {
+  std::string command;
+  std::vector<std::string> files, sets;
+  int degree = 0, count = 6, n = 100, threads = 0, steps = 300;
+  double tau2_max = 0.05;
+  std::string out, x, y, series, panels, title, param, reading;
+  double from = NAN, to = NAN;
+  bool uniform = false, plot = true;
+};
+
+void usage(std::ostream& out);
+/// Prints the message and the usage to stderr and exits with status 2.
+[[noreturn]] void badArguments(const std::string& message);
+double parseNumber(const std::string& text, const std::string& what);
+int parseInt(const std::string& text, const std::string& what, int min);
+Args parseArgs(int argc, char** argv);
+
+json rootJson(Complex r, bool refined = true);
+json spectrumJson(const Spectrum& s, int count);
+json ddeJson(const ClosedLoopLinearization& lin, const Spectrum* spectrum, int degree);
+json pointJson(const SimConfig& c);
+SpectrumOptions spectrumOptions(const Args& a, int default_degree, int seeds);
+void printJson(const json& j);
+
+/// The loop's delay system: the printed equations, or --reading.
+LinearDelaySystem systemOf(const Args& a, const SimConfig& c);
+/// Parameter family along `key` (tau2: both actuator delays), printed equations or --reading.
+SystemFamily familyOf(const Args& a, const SimConfig& c, const std::string& key);
+
+}  // namespace stability_cli
+}  // namespace lane_keeping
