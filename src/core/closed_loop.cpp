@@ -2,35 +2,12 @@
 
 #include <sstream>
 
-#include "lane_keeping/control/path.h"
 #include "lane_keeping/sim/control_stages.h"
-#include "lane_keeping/sim/divergence_monitor.h"
-#include "lane_keeping/sim/model_factory.h"
-#include "lane_keeping/sim/vehicle_plant.h"
+#include "lane_keeping/sim/loop_components.h"
+#include "lane_keeping/sim/plant_session.h"
 
 namespace lane_keeping {
 namespace {
-
-struct Schedule {
-  Nanoseconds plant_step, tracker_period, actuator_period, log_period, duration;
-  Nanoseconds pose_delay, desired_delay, measured_delay, torque_delay;
-  Hold hold;
-};
-
-Schedule scheduleOf(const SimConfig& c) {
-  Schedule s;
-  s.plant_step = secondsToNanoseconds(c.simulation.step);
-  s.tracker_period = periodFromRate(c.tracker.rate);
-  s.actuator_period = periodFromRate(c.actuator.rate);
-  s.log_period = periodFromRate(c.simulation.log_rate);
-  s.duration = secondsToNanoseconds(c.simulation.duration);
-  s.pose_delay = secondsToNanoseconds(c.delays.pose_to_tracker);
-  s.desired_delay = secondsToNanoseconds(c.delays.desired_steering_to_actuator);
-  s.measured_delay = secondsToNanoseconds(c.delays.steering_angle_to_actuator);
-  s.torque_delay = secondsToNanoseconds(c.delays.torque_to_plant);
-  s.hold = holdFromName(c.delays.hold);
-  return s;
-}
 
 std::string deadlockMessage(const SimConfig& c, const VehiclePlant& plant, const SteeringActuatorStage& actuator) {
   std::ostringstream out;
@@ -49,92 +26,51 @@ std::string deadlockMessage(const SimConfig& c, const VehiclePlant& plant, const
   return out.str();
 }
 
-/// The lockstep loop. Returns the result; throws ScheduleError on deadlock.
+/// The lockstep loop: the plant side (PlantSession) steps while its torque is in; the tracker and
+/// the actuator produce every sample their inputs cover. Returns the result; throws ScheduleError
+/// on deadlock.
 RunResult runLoop(const SimConfig& c, Nanoseconds end, const std::function<void(const LogRow&)>& on_row,
                   bool record_rows) {
-  const Schedule s = scheduleOf(c);
-  const auto path = createPath(c.path);
-  VehiclePlant plant(createVehicleModel(c), c.simulation.initial, s.plant_step,
-                     s.torque_delay, s.hold, s.actuator_period);
-  PathTrackingStage tracker(PathTracker(c.tracker, path), s.tracker_period, s.pose_delay, s.hold, s.plant_step);
-  SteeringActuatorStage actuator(SteeringActuator(c.actuator), s.actuator_period, s.desired_delay, s.measured_delay,
-                                 s.hold, s.tracker_period, s.plant_step);
-  // The tracker's output undelayed, for the log's delta_des column.
-  DelayLine<SteeringCommand> desired_log("desired steering (log)", 0, s.hold, s.tracker_period);
-  const DivergenceMonitor monitor(c.simulation.divergence);
-
-  RunResult result;
-  if (record_rows) result.rows.reserve(static_cast<std::size_t>(end / s.log_period) + 2);
-  tracker.pushPose(0, plant.pose());
-  actuator.pushMeasurement(0, plant.measurement());
-  Nanoseconds next_log = 0;
-  double integral_at_last_torque = 0.0;
-
+  const LoopSchedule s = loopScheduleOf(c);
+  PlantSession plant(c, s, end, record_rows);
+  PathTrackingStage tracker = createPathTrackingStage(c, s);
+  SteeringActuatorStage actuator = createSteeringActuatorStage(c, s);
+  const PlantSession::SampleCallback feed = [&](const VehiclePlant& p) {
+    tracker.pushPose(p.time(), p.pose());
+    actuator.pushMeasurement(p.time(), p.measurement());
+  };
+  std::size_t forwarded = 0;
   while (true) {
+    const long steps = plant.advance(feed);
+    bool produced = false;
     while (tracker.ready()) {
       const Stamped<SteeringCommand> command = tracker.produce();
       actuator.pushDesired(command.stamp, command.value);
-      desired_log.push(command.stamp, command.value);
+      plant.pushCommand(command.stamp, command.value);
+      produced = true;
     }
     while (actuator.ready()) {
       const Stamped<TorqueCommand> torque = actuator.produce();
       plant.pushTorque(torque.stamp, torque.value.torque);
-      integral_at_last_torque = actuator.actuator().integral();
+      plant.pushIntegral(torque.stamp, actuator.actuator().integral());
+      produced = true;
     }
-
-    const Nanoseconds t = plant.time();
-    const bool log_due = t >= next_log;
-    const bool at_end = t >= end;
-    if (log_due || at_end) {
-      const VehicleStateSample state = plant.sample();
-      const PathErrors errors =
-          path->errors(state.x, state.y, state.psi, state.x_dot, state.y_dot, state.sigma2);
-      if (log_due) {
-        LogRow row;
-        row.t = nanosecondsToSeconds(t);
-        row.state = state;
-        const SteeringCommand desired = desired_log.at(t);
-        desired_log.discardBefore(t);
-        row.delta_des = desired.delta_des;
-        row.delta_des_rate = desired.delta_des_rate;
-        row.e_y = errors.lateral;
-        row.e_psi = errors.heading;
-        row.integral = integral_at_last_torque;
-        if (on_row) on_row(row);
-        if (record_rows) result.rows.push_back(row);
-        while (next_log <= t) next_log += s.log_period;
-      }
-      if (auto reason = monitor.check(state, errors)) {
-        result.status = RunResult::Status::kDiverged;
-        result.message = "diverged at t = " + formatSeconds(nanosecondsToSeconds(t)) + ": " + *reason;
-        break;
-      }
+    if (on_row) {
+      for (; forwarded < plant.result().rows.size(); ++forwarded) on_row(plant.result().rows[forwarded]);
     }
-    if (at_end) break;
-    if (!plant.readyToStep()) throw ScheduleError(deadlockMessage(c, plant, actuator));
-    plant.step();
-    ++result.plant_steps;
-    if (auto reason = monitor.checkStep(plant.state())) {
-      // Record the offending state so the log shows how it ended, then stop.
-      LogRow row;
-      row.t = nanosecondsToSeconds(plant.time());
-      row.state = plant.sample();
-      if (record_rows) result.rows.push_back(row);
-      result.status = RunResult::Status::kDiverged;
-      result.message = "diverged at t = " + formatSeconds(row.t) + ": " + *reason;
-      break;
+    if (plant.done()) break;
+    if (steps == 0 && !produced) {
+      if (plant.stopped()) throw ScheduleError("run stopped but " + plant.pendingReason());
+      throw ScheduleError(deadlockMessage(c, plant.plant(), actuator));
     }
-    tracker.pushPose(plant.time(), plant.pose());
-    actuator.pushMeasurement(plant.time(), plant.measurement());
   }
-  result.end_time = nanosecondsToSeconds(plant.time());
-  return result;
+  return plant.takeResult();
 }
 
 }  // namespace
 
 void checkLockstepFeasible(const SimConfig& config) {
-  const Schedule s = scheduleOf(config);
+  const LoopSchedule s = loopScheduleOf(config);
   // A deadlock shows within a few actuator periods; run that long without logging.
   const Nanoseconds probe = std::min<Nanoseconds>(s.duration, 4 * (s.actuator_period + s.tracker_period) + 20 * s.plant_step);
   runLoop(config, probe, nullptr, false);
@@ -146,7 +82,7 @@ ClosedLoop::ClosedLoop(SimConfig config) : config_(std::move(config)) {
 }
 
 RunResult ClosedLoop::run(const std::function<void(const LogRow&)>& on_row) const {
-  return runLoop(config_, scheduleOf(config_).duration, on_row, true);
+  return runLoop(config_, loopScheduleOf(config_).duration, on_row, true);
 }
 
 }  // namespace lane_keeping

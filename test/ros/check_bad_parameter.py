@@ -1,0 +1,60 @@
+#!/usr/bin/env python3
+"""rostest: a bad parameter fails the launch of closed_loop.launch with a message naming it.
+
+Runs roslaunch (against the test's master) with one bad parameter per case and expects it to end by
+itself within a time limit, its output naming the key. Cases: an out-of-range delay (three
+processes), a non-numeric gain (nodelets), and a misspelt key in an overlay file."""
+import os
+import subprocess
+import sys
+import tempfile
+import time
+import unittest
+
+import rospy
+import rostest
+
+from lk_test_support import package_path
+
+
+class CheckBadParameter(unittest.TestCase):
+    def run_launch(self, ns, args, limit=60.0):
+        launch = os.path.join(package_path(), 'launch', 'closed_loop.launch')
+        cmd = ['roslaunch', launch, 'ns:=' + ns, 'exit_when_done:=true', 'duration:=1'] + args
+        start = time.time()
+        try:
+            proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True,
+                                  timeout=limit)
+        except subprocess.TimeoutExpired as e:
+            self.fail('%s did not end within %.0f s (hang): %s' % (' '.join(cmd), limit, (e.output or '')[-2000:]))
+        elapsed = time.time() - start
+        rospy.loginfo('%s: ended after %.1f s', ' '.join(args), elapsed)
+        return proc.stdout
+
+    def check(self, ns, args, key, value):
+        out = self.run_launch(ns, args)
+        lines = [l for l in out.splitlines() if key in l]
+        rospy.loginfo('%s -> %s', ' '.join(args), lines[:3])
+        self.assertTrue(lines, 'no message names %s; output:\n%s' % (key, out[-3000:]))
+        self.assertTrue(any(value in l for l in lines), 'the message does not show the value %s: %s' % (value, lines))
+        self.assertIn('invalid configuration', out)
+        self.assertNotIn('run summary', out)  # nothing ran
+
+    def test_out_of_range_delay_three_processes(self):
+        self.check('bad_delay', ['tau1:=-0.5'], 'delays.pose_to_tracker', '-0.5')
+
+    def test_non_numeric_gain_nodelets(self):
+        self.check('bad_gain', ['nodelets:=true', 'p:=strong'], 'actuator.p', 'strong')
+
+    def test_misspelt_key_in_an_overlay(self):
+        with tempfile.NamedTemporaryFile('w', suffix='.yaml', delete=False) as f:
+            f.write('tracker:\n  k_yy: 0.15\n')
+        try:
+            self.check('bad_key', ['overrides:=' + f.name], 'tracker.k_yy', 'not a known parameter')
+        finally:
+            os.remove(f.name)
+
+
+if __name__ == '__main__':
+    rospy.init_node('check_bad_parameter')
+    rostest.rosrun('lane_keeping', 'check_bad_parameter', CheckBadParameter, sys.argv)
