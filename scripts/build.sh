@@ -5,10 +5,20 @@
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 "$REPO_ROOT/scripts/install_deps.sh"
-mkdir -p "$WS/src"
-if [ ! -e "$WS/src/lane_keeping" ]; then
-  ln -s "$REPO_ROOT" "$WS/src/lane_keeping"
-fi
+# The package folder holds a symlink to each top-level entry of the repository except build
+# directories and .git: a symlink to the whole repository would let ROS's package crawler (roslaunch,
+# rostest, <node pkg=...>) walk build/ws/src/lane_keeping/build/ws/... without end.
+PKG="$WS/src/lane_keeping"
+if [ -L "$PKG" ]; then rm "$PKG"; fi
+mkdir -p "$PKG"
+for entry in "$REPO_ROOT"/* "$REPO_ROOT"/.[!.]*; do
+  name="$(basename "$entry")"
+  case "$name" in build|build-*|.git|.ci) continue ;; esac
+  [ -e "$PKG/$name" ] || ln -s "$entry" "$PKG/$name"
+done
+for link in "$PKG"/*; do  # drop links to entries that no longer exist
+  [ -L "$link" ] && [ ! -e "$link" ] && rm "$link"
+done
 cd "$WS"
 JOBS="${LK_JOBS:-$(nproc)}"
 # Always build every target first (tools must not go stale against a rebuilt library), then any

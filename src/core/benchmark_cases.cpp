@@ -69,7 +69,8 @@ std::vector<std::string> truthOverlay(const std::string& effect, bool large, dou
   if (effect == "steering_friction") {
     // LuGre friction with a Stribeck peak (Deur eqs 6, 9) against the candidate's tanh Coulomb + viscous.
     return {"steering.friction_model=lugre", "steering.coulomb_friction=" + pick(1.5, 4.0),
-            "steering.breakaway_friction=" + pick(2.5, 6.0), "steering.friction_velocity=0.02"};
+            "steering.breakaway_friction=" + pick(2.5, 6.0), "steering.friction_velocity=0.02",
+            "steering.friction_stiffness=2e4"};  // presliding g / sigma0 ~ 0.1-0.3 mrad, as in a steering gear
   }
   if (effect == "torque_limit") {
     // A smooth saturation against the candidate's hard clamp; limits as fractions of the nominal run's

@@ -413,10 +413,12 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     }
   }
   for (const TimeSegment& interval : shootingIntervals(segments, options.chassis_horizon)) {
-    const std::size_t first = log.indexAtOrBefore(interval.t0) + 1;
-    std::size_t last = first;
-    while (last < times.size() && times[last] < interval.t1) ++last;
-    if (last <= first) continue;
+    // The chassis is slow (a few Hz): compare at most every chassis_compare_period seconds.
+    std::vector<std::size_t> samples;
+    for (std::size_t i = log.indexAtOrBefore(interval.t0) + 1; i < times.size() && times[i] < interval.t1; ++i) {
+      if (samples.empty() || times[i] - times[samples.back()] >= options.chassis_compare_period - 1e-9) samples.push_back(i);
+    }
+    if (samples.empty()) continue;
     const double t0 = interval.t0;
     Eigen::VectorXd q0 = Eigen::VectorXd::Zero(n);
     q0[0] = log.at(C::kX, t0);
@@ -433,27 +435,29 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
       model.rearTire().steadyStateVector(c.rear, settled.data());
       for (int i = 0; i < rear_n; ++i) q0[5 + front_n + i] = settled[i];
     }
-    Eigen::MatrixXd measured(last - first, outputs_n);
-    for (std::size_t i = first; i < last; ++i) {
-      for (int c = 0; c < outputs_n; ++c) measured(i - first, c) = log.samples(channels[c])[i];
+    const Eigen::Index rows = static_cast<Eigen::Index>(samples.size());
+    Eigen::MatrixXd measured(rows, outputs_n);
+    for (Eigen::Index k = 0; k < rows; ++k) {
+      for (int c = 0; c < outputs_n; ++c) measured(k, c) = log.samples(channels[c])[samples[k]];
     }
     auto simulate = [&](const Eigen::VectorXd& start, Eigen::MatrixXd& outputs) {
       Eigen::VectorXd q = start;
       double t = t0;
-      for (std::size_t i = first; i < last; ++i) {
-        integrate(f, t, times[i], step, q, rk4);
-        t = times[i];
+      for (Eigen::Index k = 0; k < rows; ++k) {
+        const double tk = times[samples[k]];
+        integrate(f, t, tk, step, q, rk4);
+        t = tk;
         if (!q.allFinite() || std::fabs(q[3]) > 50.0 || std::fabs(q[4]) > 10.0) {
-          outputs.bottomRows(last - i).setZero();
+          outputs.bottomRows(rows - k).setZero();
           return false;
         }
-        outputs(i - first, outputs_n) = q[3];  // sigma1: projected, not compared
-        outputs(i - first, 0) = q[4];
-        outputs(i - first, 1) = q[2];
-        outputs(i - first, 2) = q[1];
+        outputs(k, outputs_n) = q[3];  // sigma1: projected, not compared
+        outputs(k, 0) = q[4];
+        outputs(k, 1) = q[2];
+        outputs(k, 2) = q[1];
         if (with_ay) {
           f(t, q, q_dot);  // a_y = sigma1' + sigma2 u at this state
-          outputs(i - first, 3) = q_dot[3] + q[4] * last_u;
+          outputs(k, 3) = q_dot[3] + q[4] * last_u;
         }
       }
       return true;
@@ -464,12 +468,13 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
       ++out.diverged_intervals;
     }
     for (auto& trace : traces) trace.breaks.push_back(trace.t.size());
-    for (std::size_t i = first; i < last; ++i) {
-      out.sigma1_estimate.emplace_back(times[i], predicted(i - first, outputs_n));
+    for (Eigen::Index k = 0; k < rows; ++k) {
+      const double tk = times[samples[k]];
+      out.sigma1_estimate.emplace_back(tk, predicted(k, outputs_n));
       for (int c = 0; c < outputs_n; ++c) {
-        traces[c].t.push_back(times[i]);
-        traces[c].measured.push_back(measured(i - first, c));
-        traces[c].predicted.push_back(predicted(i - first, c));
+        traces[c].t.push_back(tk);
+        traces[c].measured.push_back(measured(k, c));
+        traces[c].predicted.push_back(predicted(k, c));
       }
     }
   }

@@ -49,9 +49,10 @@ struct SubsystemReplay {
 
 struct ReplayOptions {
   double steering_horizon = 0.15;    ///< [s]
-  double steering_step = 1e-3;       ///< RK4 step [s] (reduced automatically for stiff steering systems)
+  double steering_step = 2e-3;       ///< RK4 step [s] (reduced automatically for stiff steering systems)
   double chassis_horizon = 2.0;      ///< [s]
-  double chassis_step = 2e-3;        ///< RK4 step [s] (reduced automatically for fast tire dynamics)
+  double chassis_step = 4e-3;        ///< RK4 step [s] (reduced automatically for fast tire dynamics)
+  double chassis_compare_period = 0.01;  ///< compare the chassis outputs at most at 100 Hz [s]
   bool estimate_initial_conditions = true;  ///< project out the nuisance initial conditions
 };
 

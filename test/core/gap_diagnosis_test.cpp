@@ -1,0 +1,103 @@
+// The gap diagnosis end to end on generated logs (truth in a higher-fidelity form than the candidate),
+// kept short: 16 s logs and a few candidates each, so that the suite stays fast.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lane_keeping/gap/benchmark_cases.h"
+#include "lane_keeping/gap/diagnosis.h"
+#include "lane_keeping/gap/log_reader.h"
+
+namespace lane_keeping {
+namespace {
+
+BenchmarkCase findCase(const std::string& id) {
+  for (const auto& c : benchmarkCases()) {
+    if (c.id == id) return c;
+  }
+  throw std::runtime_error("no case " + id);
+}
+
+/// A shortened benchmark case and its nominal configuration.
+GapReport diagnoseCase(const std::string& id, const std::vector<std::string>& effects, double duration = 16.0) {
+  BenchmarkCase c = findCase(id);
+  c.truth_overlay.push_back("simulation.duration=" + std::to_string(duration));
+  const GapLog log = generateBenchmarkLog(c, SensorNoise{}, 200.0);
+  SimConfig nominal = benchmarkNominal(c.manoeuvre);
+  nominal.simulation.duration = duration;
+  DiagnosisOptions options;
+  options.effects = effects;
+  options.closed_loop = true;
+  return diagnoseGap(nominal, {log}, {}, options);
+}
+
+const RankedEffect& ranked(const GapReport& r, const std::string& effect) {
+  for (const auto& e : r.ranking) {
+    if (e.effect == effect) return e;
+  }
+  throw std::runtime_error("effect not ranked: " + effect);
+}
+
+TEST(GapDiagnosis, FindsAHiddenSensingDelayAndItsSize) {
+  const GapReport r = diagnoseCase("sensing_delay-large-lane_change", {"sensing_delay", "pose_bias", "inertia"});
+  EXPECT_EQ(r.where.subsystem, "tracker");
+  EXPECT_EQ(r.verdict.effect, "sensing_delay") << r.verdict.reason;
+  EXPECT_GT(r.verdict.shrink, 0.8);
+  // Truth: 0.2831 s instead of the nominal 0.2 s.
+  EXPECT_NEAR(ranked(r, "sensing_delay").params.at("extra_delay"), 0.0831, 0.004);
+  EXPECT_LT(r.verdict.gap_after, r.verdict.gap_before);
+}
+
+TEST(GapDiagnosis, FindsLuGreSteeringFrictionWithTheTanhCandidate) {
+  const GapReport r = diagnoseCase("steering_friction-large-sinusoid", {"steering_friction", "torque_limit", "inertia"});
+  EXPECT_EQ(r.where.subsystem, "steering");
+  EXPECT_EQ(r.verdict.effect, "steering_friction") << r.verdict.reason;
+  EXPECT_GT(r.verdict.shrink, 0.5);
+  // Truth: LuGre with T_c = 4, T_s = 6 N m; the tanh model's Coulomb level lands in between.
+  const double coulomb = ranked(r, "steering_friction").params.at("coulomb");
+  EXPECT_GT(coulomb, 2.5);
+  EXPECT_LT(coulomb, 7.0);
+}
+
+TEST(GapDiagnosis, NoEffectIsUnexplained) {
+  const GapReport r = diagnoseCase("none-1-lane_change", {"steering_friction", "cornering_stiffness", "sensing_delay"});
+  EXPECT_EQ(r.verdict.effect, "unexplained") << r.verdict.reason;
+  EXPECT_LT(r.verdict.gap_before, DiagnosisOptions{}.detection_gap);
+  EXPECT_EQ(r.ranking.size(), 3u);
+}
+
+TEST(GapDiagnosis, ReportFieldsAreFilled) {
+  const GapReport r = diagnoseCase("lateral_disturbance-large-sinusoid", {"lateral_disturbance", "pose_bias"}, 12.0);
+  EXPECT_EQ(r.verdict.effect, "lateral_disturbance") << r.verdict.reason;
+  EXPECT_EQ(r.where.subsystem, "chassis");
+  EXPECT_EQ(r.where.subsystems.size(), 4u);
+  EXPECT_FALSE(r.where.windows.empty());
+  EXPECT_FALSE(r.where.bands.empty());
+  double band_sum = 0.0;
+  for (const auto& b : r.where.bands) band_sum += b.share;
+  EXPECT_NEAR(band_sum, 1.0, 1e-9);
+  EXPECT_FALSE(r.where.regimes.empty());
+  EXPECT_FALSE(r.ranking.front().config.empty());  // the overlay to add the effect
+  EXPECT_TRUE(std::isfinite(r.how_far.before));
+  EXPECT_LT(r.how_far.after, r.how_far.before);  // closed-loop replay closer with the effect
+  EXPECT_GT(r.rows_used, 1000u);
+}
+
+TEST(GapDiagnosis, BadInputIsAClearError) {
+  EXPECT_THROW(diagnoseGap(SimConfig{}, {}, {}, {}), InputError);
+  try {
+    readLog("/tmp/lk_gap_no_such_file.bag");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("lk_gap_no_such_file.bag"), std::string::npos);
+  }
+  try {
+    readLog("/tmp/run.parquet");
+    FAIL();
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("unknown log type"), std::string::npos);
+  }
+}
+
+}  // namespace
+}  // namespace lane_keeping
