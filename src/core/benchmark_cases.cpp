@@ -126,7 +126,7 @@ double nominalPeakTorque(const std::string& manoeuvre) {
   if (it != cache.end()) return it->second;
   const RunResult run = ClosedLoop(benchmarkNominal(manoeuvre)).run();
   double peak = 0.0;
-  for (const auto& row : run.rows) peak = std::max(peak, std::fabs(row.state.torque));
+  for (const auto& row : run.rows) peak = std::max(peak, std::fabs(row.torque_command));
   cache[manoeuvre] = peak;
   return peak;
 }

@@ -331,7 +331,7 @@ GapLog gapLogFromRows(const std::vector<LogRow>& rows, const std::string& source
     const LogRow& r = rows[i];
     const VehicleStateSample& s = r.state;
     const double values[] = {r.t,     s.x,     s.y,           s.psi,       s.sigma2, s.speed,
-                             s.lateral_acceleration, s.delta, s.sigma3, r.delta_des, s.torque};
+                             s.lateral_acceleration, s.delta, s.sigma3, r.delta_des, r.torque_command};
     if (!std::all_of(std::begin(values), std::end(values), [](double v) { return std::isfinite(v); })) {
       skipped.push_back(i);
       continue;
@@ -350,7 +350,7 @@ GapLog gapLogFromRows(const std::vector<LogRow>& rows, const std::string& source
     log.delta.push_back(s.delta);
     log.delta_rate.push_back(s.sigma3);
     log.delta_des.push_back(r.delta_des);
-    log.torque.push_back(s.torque);
+    log.torque.push_back(r.torque_command);
   }
   log.rows_skipped = skipped.size();
   if (!skipped.empty()) {

@@ -13,16 +13,16 @@ const std::vector<std::string>& logColumns() {
       "t",        "x",        "y",        "psi",       "yaw_rate",  "v",           "ay",
       "delta",    "delta_rate", "delta_des", "torque",  "sigma1",    "delta_des_rate", "e_y",
       "e_psi",    "alpha_f",  "alpha_r",  "force_f",   "force_r",   "moment_f",    "moment_r",
-      "integral"};
+      "integral", "torque_applied"};
   return columns;
 }
 
 std::vector<double> logValues(const LogRow& r) {
   const VehicleStateSample& s = r.state;
   return {r.t,       s.x,        s.y,        s.psi,       s.sigma2,          s.speed,
-          s.lateral_acceleration, s.delta, s.sigma3, r.delta_des, s.torque,   s.sigma1,
+          s.lateral_acceleration, s.delta, s.sigma3, r.delta_des, r.torque_command, s.sigma1,
           r.delta_des_rate, r.e_y, r.e_psi, s.slip_angle_front, s.slip_angle_rear, s.force_front,
-          s.force_rear, s.moment_front, s.moment_rear, r.integral};
+          s.force_rear, s.moment_front, s.moment_rear, r.integral, s.torque};
 }
 
 void writeLogCsv(std::ostream& out, const std::vector<LogRow>& rows) {

@@ -10,6 +10,7 @@ PlantSession::PlantSession(const SimConfig& config, const LoopSchedule& schedule
       path_(createPath(config.path)),
       monitor_(config.simulation.divergence),
       desired_("desired steering (log)", 0, schedule.hold, schedule.tracker_period),
+      command_("steering torque command (log)", 0, schedule.hold, schedule.actuator_period),
       integral_("actuator integral (log)", 0, Hold::kZeroOrder, schedule.actuator_period) {
   if (record_rows_) result_.rows.reserve(static_cast<std::size_t>(end / schedule.log_period) + 2);
 }
@@ -95,9 +96,11 @@ void PlantSession::completeRows() {
     PendingRow& front = pending_.front();
     if (front.needs_inputs) {
       const Nanoseconds t = front.stamp;
-      if (!desired_.covers(t) || !integral_.covers(t)) return;
+      if (!desired_.covers(t) || !integral_.covers(t) || !command_.covers(t)) return;
       const SteeringCommand desired = desired_.at(t);
       desired_.discardBefore(t);
+      front.row.torque_command = command_.at(t).torque;
+      command_.discardBefore(t);
       front.row.delta_des = desired.delta_des;
       front.row.delta_des_rate = desired.delta_des_rate;
       front.row.integral = integral_.at(t).value;
@@ -116,7 +119,7 @@ std::string PlantSession::pendingReason() const {
     reason += " the desired steering angle (tracker output; latest stamp " +
               formatSeconds(nanosecondsToSeconds(desired_.latestStamp())) + ")";
   }
-  if (!integral_.covers(t)) {
+  if (!integral_.covers(t) || !command_.covers(t)) {
     reason += " the steering torque (actuator output; latest stamp " +
               formatSeconds(nanosecondsToSeconds(integral_.latestStamp())) + ")";
   }

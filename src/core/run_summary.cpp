@@ -26,7 +26,7 @@ RunSummary summarizeRun(const SimConfig& config, const RunResult& result) {
       s.peak_lateral_offset_time = r.t;
     }
     s.peak_steering_angle = std::max(s.peak_steering_angle, std::fabs(r.state.delta));
-    s.peak_torque = std::max(s.peak_torque, std::fabs(r.state.torque));
+    s.peak_torque = std::max(s.peak_torque, std::fabs(r.torque_command));
     s.peak_lateral_acceleration = std::max(s.peak_lateral_acceleration, std::fabs(r.state.lateral_acceleration));
     s.peak_slip_angle =
         std::max({s.peak_slip_angle, std::fabs(r.state.slip_angle_front), std::fabs(r.state.slip_angle_rear)});

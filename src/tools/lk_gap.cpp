@@ -17,6 +17,7 @@
 #include "lane_keeping/gap/gap_log.h"
 #include "lane_keeping/gap/gap_report_markdown.h"
 #include "lane_keeping/gap/log_reader.h"
+#include "bag_log_reader.h"
 
 namespace {
 
@@ -81,6 +82,7 @@ int main(int argc, char** argv) {
     usage(std::cerr);
     return 2;
   }
+  registerBagLogReader([](const std::string& path) { return readBagLog(path); });
   try {
     const SimConfig nominal = loadSimConfig(configs, sets);
     std::vector<GapLog> training, held;

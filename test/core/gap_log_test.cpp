@@ -290,7 +290,8 @@ TEST(GapLogFromRows, MapsStateFieldsToColumns) {
     r.state.delta = 7 + i;
     r.state.sigma3 = 8 + i;
     r.delta_des = 9 + i;
-    r.state.torque = 10 + i;
+    r.torque_command = 10 + i;  // the `torque` column is the command M_S
+    r.state.torque = -1;        // the torque acting on the wheel: not that column
   }
   rows[1].state.sigma3 = std::numeric_limits<double>::quiet_NaN();
   const GapLog log = gapLogFromRows(rows, "sim");

@@ -110,15 +110,20 @@ TEST(PlantSession, LogRowsWaitForTheControllersOutputs) {
   const SimConfig c = loadSimConfig({scenario("fig6.yaml")}, {"simulation.duration=0.01"});
   const LoopSchedule s = loopScheduleOf(c);
   PlantSession plant(c, s, s.duration);
-  plant.advance(nullptr);  // t = 0: logged, but without the tracker's command and the actuator's integral
+  plant.advance(nullptr);  // t = 0: logged, but without the tracker's command and the actuator's outputs
   EXPECT_EQ(plant.result().rows.size(), 0u);
   EXPECT_EQ(plant.pendingRows(), 1u);
   EXPECT_NE(plant.pendingReason().find("desired steering"), std::string::npos) << plant.pendingReason();
   EXPECT_TRUE(plant.waitingForTorque());
   plant.pushCommand(0, SteeringCommand{0.01, 0.0});
   plant.pushIntegral(0, 0.0);
+  EXPECT_EQ(plant.result().rows.size(), 0u);  // still waits for the torque command at t = 0
+  EXPECT_NE(plant.pendingReason().find("steering torque"), std::string::npos) << plant.pendingReason();
+  plant.pushTorque(0, 12.5);
+  plant.pushTorque(100000, 12.5);
   EXPECT_EQ(plant.result().rows.size(), 1u);
   EXPECT_EQ(plant.result().rows[0].delta_des, 0.01);
+  EXPECT_EQ(plant.result().rows[0].torque_command, 12.5);
 }
 
 TEST(PlantSession, PacingLimitStopsBeforeTheWallClock) {

@@ -10,14 +10,17 @@ namespace lane_keeping {
 
 struct LogRow {
   double t = 0.0;                 ///< [s]
-  VehicleStateSample state;       ///< plant state and outputs at t (torque = M_S acting at t)
+  VehicleStateSample state;       ///< plant state and outputs at t (state.torque: the torque acting on the
+                                  ///< wheel at t, i.e. the command delayed by delays.torque_to_plant)
+  double torque_command = 0.0;    ///< M_S as the actuator commands it at t [N m] (the `torque` column)
   double delta_des = 0.0;         ///< tracker output at t [rad]
   double delta_des_rate = 0.0;    ///< [rad/s]
   double e_y = 0.0, e_psi = 0.0;  ///< errors of the actual (undelayed) state from the path [m, rad]
   double integral = 0.0;          ///< actuator integral z at the latest actuator sample <= t [rad s]
 };
 
-/// Column names in file order. The first eleven are DESIGN §5's.
+/// Column names in file order. The first eleven are DESIGN §5's (`torque` is the command M_S);
+/// `torque_applied` is the torque acting on the wheel.
 const std::vector<std::string>& logColumns();
 /// Values of a row in logColumns() order.
 std::vector<double> logValues(const LogRow& row);

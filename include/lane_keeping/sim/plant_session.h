@@ -51,7 +51,11 @@ class PlantSession {
   long advance(const SampleCallback& on_sample, Nanoseconds until = kNoLimit);
 
   /// Steering torque M_S stamped `stamp` (the actuator's output); throws InputError if not newer than the last.
-  void pushTorque(Nanoseconds stamp, double torque) { plant_.pushTorque(stamp, torque); }
+  void pushTorque(Nanoseconds stamp, double torque) {
+    plant_.pushTorque(stamp, torque);
+    command_.push(stamp, TorqueCommand{torque});
+    completeRows();
+  }
   /// The tracker's output (for the log's delta_des columns); throws InputError if not newer than the last.
   void pushCommand(Nanoseconds stamp, const SteeringCommand& command);
   /// The actuator's integral z after its sample at `stamp`; throws InputError if not newer than the last.
@@ -90,6 +94,7 @@ class PlantSession {
   std::shared_ptr<const Path> path_;
   DivergenceMonitor monitor_;
   DelayLine<SteeringCommand> desired_;     // tracker output, undelayed
+  DelayLine<TorqueCommand> command_;       // actuator output (the torque command), undelayed
   DelayLine<ActuatorIntegral> integral_;   // actuator integral, latest sample <= t (zero-order hold)
   std::deque<PendingRow> pending_;
   RunResult result_;

@@ -1,0 +1,109 @@
+// Reading bags for the gap diagnosis: the suite's topics in any namespace, thinning, and clear errors
+// for bags without them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <rosbag/bag.h>
+#include <std_msgs/Float64.h>
+
+#include <lane_keeping/DesiredSteeringArray.h>
+#include <lane_keeping/SteeringTorqueArray.h>
+#include <lane_keeping/VehicleStateArray.h>
+
+#include "bag_log_reader.h"
+#include "lane_keeping/common/errors.h"
+
+namespace lane_keeping {
+namespace {
+
+std::string tempBag(const std::string& name) { return testing::TempDir() + name; }
+
+/// 2 s of a plant at 1 kHz in namespace /car, desired steering at 100 Hz, optional torque commands.
+void writeSuiteBag(const std::string& path, bool with_torque, bool nan_sample = false) {
+  rosbag::Bag bag(path, rosbag::bagmode::Write);
+  for (int k = 0; k < 2000; k += 10) {
+    lane_keeping::VehicleStateArray states;
+    for (int i = k; i < k + 10; ++i) {
+      lane_keeping::VehicleState s;
+      s.header.stamp.fromNSec(static_cast<uint64_t>(i) * 1000000ull);
+      s.x = 15.0 * i * 1e-3;
+      s.y = 0.5;
+      s.yaw_rate = 0.01;
+      s.delta = 0.002 * i * 1e-3;
+      s.speed = 15.0;
+      s.steering_torque = 3.0;
+      if (nan_sample && i == 500) s.y = std::nan("");
+      states.samples.push_back(s);
+    }
+    const ros::Duration receipt(1.0);  // record times must be > 0; the reader uses header stamps
+    bag.write("/car/vehicle_state", states.samples.front().header.stamp + receipt, states);
+    lane_keeping::DesiredSteeringArray desired;
+    lane_keeping::DesiredSteering d;
+    d.header.stamp.fromNSec(static_cast<uint64_t>(k) * 1000000ull);
+    d.delta_des = 0.001 * k * 1e-3;
+    desired.samples.push_back(d);
+    bag.write("/car/desired_steering", d.header.stamp + receipt, desired);
+    if (with_torque) {
+      lane_keeping::SteeringTorqueArray torque;
+      lane_keeping::SteeringTorque t;
+      t.header.stamp = d.header.stamp;
+      t.torque = 7.0;
+      torque.samples.push_back(t);
+      bag.write("/car/steering_torque", t.header.stamp + receipt, torque);
+    }
+  }
+  bag.close();
+}
+
+TEST(BagLogReader, ReadsTheSuiteTopicsInAnyNamespace) {
+  const std::string path = tempBag("suite.bag");
+  writeSuiteBag(path, true);
+  const GapLog log = readBagLog(path, 100.0);  // thinned from 1 kHz to 100 Hz
+  ASSERT_GT(log.size(), 150u);
+  EXPECT_LT(log.size(), 210u);
+  EXPECT_NEAR(log.t[1] - log.t[0], 0.01, 1e-9);
+  EXPECT_DOUBLE_EQ(log.y[3], 0.5);
+  EXPECT_DOUBLE_EQ(log.torque[3], 7.0);  // the command, not the applied torque
+  EXPECT_NEAR(log.delta_des[10], 0.001 * log.t[10], 1e-12);  // interpolated desired steering
+  EXPECT_TRUE(log.hasSpeed() && log.hasLateralAcceleration() && log.hasSteeringRate());
+}
+
+TEST(BagLogReader, WithoutTorqueCommandsUsesTheAppliedTorqueAndSaysSo) {
+  const std::string path = tempBag("no_torque.bag");
+  writeSuiteBag(path, false, true);
+  const GapLog log = readBagLog(path, 1000.0);
+  EXPECT_DOUBLE_EQ(log.torque[3], 3.0);
+  EXPECT_EQ(log.rows_skipped, 10u);  // the NaN sample, and 9 after the last desired steering (1.99 s)
+  bool torque_noted = false, nan_noted = false;
+  for (const auto& note : log.notes) {
+    torque_noted = torque_noted || note.find("steering_torque") != std::string::npos;
+    nan_noted = nan_noted || note.find("1 samples holding NaN") != std::string::npos;
+  }
+  EXPECT_TRUE(torque_noted);
+  EXPECT_TRUE(nan_noted);
+}
+
+TEST(BagLogReader, BagWithoutTheSuiteTopicsNamesWhatIsMissing) {
+  const std::string path = tempBag("other.bag");
+  {
+    rosbag::Bag bag(path, rosbag::bagmode::Write);
+    std_msgs::Float64 value;
+    value.data = 1.0;
+    bag.write("/speedometer", ros::Time(1.0), value);
+    bag.close();
+  }
+  try {
+    readBagLog(path);
+    FAIL() << "expected an InputError";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("other.bag"), std::string::npos) << what;
+    EXPECT_NE(what.find("vehicle_state"), std::string::npos) << what;
+    EXPECT_NE(what.find("/speedometer"), std::string::npos) << what;  // lists what the bag holds
+  }
+  EXPECT_THROW(readBagLog(tempBag("does_not_exist.bag")), InputError);
+}
+
+}  // namespace
+}  // namespace lane_keeping
