@@ -17,7 +17,10 @@ SingleTrackModel::SingleTrackModel(const VehicleParams& params, const SteeringPa
       rear_(std::move(rear)),
       inv_V_(1.0 / params.speed),
       inv_JF_(1.0 / params.steering_inertia),
-      speed_k_(2.0 * M_PI / params.speed_wavelength) {}
+      speed_k_(2.0 * M_PI / params.speed_wavelength),
+      front_offset_(kRigidStateSize + steering.stateSize()),
+      rear_offset_(front_offset_ + front_.stateSize()),
+      state_size_(rear_offset_ + rear_.stateSize()) {}
 
 Eigen::VectorXd SingleTrackModel::initialState(const InitialState& initial) const {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(stateSize());

@@ -223,11 +223,12 @@ TEST(ContactPressure, SmoothAtTinyYAndAcrossSeriesSwitches) {
 }
 
 TEST(ContactPressure, FactorsEqualKappaAndLambda) {
-  // factors() (used by the lumped model) evaluates uniform kappa, lambda through phi-functions
-  // (series below y = 1, recurrence above): it must agree with kappa(), lambda() everywhere,
-  // including y -> inf (y = L c0 / r|w|: a wheel speed near zero), where lambda -> 1.
+  // factors() (used by the lumped model) evaluates uniform kappa, lambda by Taylor polynomials below
+  // y = 0.4 and through phi-functions above (series below y = 1, recurrence beyond): it must agree
+  // with kappa(), lambda() everywhere, across both switches, and as y -> inf (y = L c0 / r|w|: a wheel
+  // speed near zero), where lambda -> 1.
   for (const ContactPressure& p : {ContactPressure::uniform(), ContactPressure::trapezoidal(kRl, kRr)}) {
-    for (double y : {0.0, 1e-300, 1e-12, 1e-3, 0.3, 0.999999999999, 1.0, 1.000000000001, 2.0, 10.0, 1e3, 1e6,
+    for (double y : {0.0, 1e-300, 1e-12, 1e-3, 0.1, 0.2, 0.3, 0.399999999999, 0.4, 0.400000000001, 0.999999999999, 1.0, 1.000000000001, 2.0, 10.0, 1e3, 1e6,
                      1e12, 1e17, 1e300}) {
       SCOPED_TRACE(y);
       const auto f = p.factors(y);

@@ -48,11 +48,11 @@ class SingleTrackModel {
   SingleTrackModel(const VehicleParams& params, const SteeringParams& steering, const DisturbanceParams& disturbance,
                    Tire front, Tire rear);
 
-  int stateSize() const { return kRigidStateSize + steering_.stateSize() + front_.stateSize() + rear_.stateSize(); }
+  int stateSize() const { return state_size_; }
   /// Steering-system states: column angle and rate (if compliant), then the LuGre friction state.
   int steeringStateOffset() const { return kRigidStateSize; }
-  int frontTireOffset() const { return kRigidStateSize + steering_.stateSize(); }
-  int rearTireOffset() const { return frontTireOffset() + front_.stateSize(); }
+  int frontTireOffset() const { return front_offset_; }
+  int rearTireOffset() const { return rear_offset_; }
   const VehicleParams& params() const { return p_; }
   const SteeringParams& steering() const { return steering_; }
   const DisturbanceParams& disturbance() const { return disturbance_; }
@@ -315,6 +315,7 @@ class SingleTrackModel {
   double inv_V_;   ///< 1 / V
   double inv_JF_;  ///< 1 / J_F
   double speed_k_; ///< 2 pi / speed_wavelength
+  int front_offset_, rear_offset_, state_size_;  ///< state layout, fixed at construction
 };
 
 /// Builds the model of a configuration: static axle loads (DESIGN §3) and one tire per axle; rigid,
