@@ -20,6 +20,7 @@
 #include "lane_keeping/gap/candidate_effects.h"
 #include "lane_keeping/gap/gap_metrics.h"
 #include "lane_keeping/gap/log_signals.h"
+#include "lane_keeping/gap/winner_selection.h"
 #include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {
@@ -132,6 +133,7 @@ struct CandidateFit {
   bool ok = false;
   std::string note;
   std::vector<double> theta, sigma;
+  bool at_bound = false;  ///< a fitted parameter is pinned at a bound of its range
   SimConfig corrected;
   double train_before = 0.0, train_after = 0.0;
   double heldout_before = 0.0, heldout_after = 0.0;
@@ -338,6 +340,13 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nomina
   }
   fit.theta = theta;
   fit.corrected = objective.configFor(theta);
+  for (std::size_t i = 0; i < theta.size(); ++i) {
+    const auto& p = effect.params[i];
+    const double span = p.log_scale ? std::log(p.upper / p.lower) : (p.upper - p.lower);
+    const double from_lower = p.log_scale ? std::log(theta[i] / p.lower) : theta[i] - p.lower;
+    const double from_upper = p.log_scale ? std::log(p.upper / theta[i]) : p.upper - theta[i];
+    if (std::min(from_lower, from_upper) < 0.01 * span) fit.at_bound = true;
+  }
 
   // 1-sigma uncertainty from the Gauss-Newton covariance s^2 (J^T J)^-1 at the optimum (central
   // differences in SI units). Residuals of neighbouring samples are correlated, so this is a lower bound.
@@ -467,8 +476,11 @@ std::vector<double> signedSeries(const SubsystemReplay& replay, double* dt) {
   return r;
 }
 
+/// The chassis residual must be this many times its noise floor to count as an upstream cause.
+constexpr double kUpstreamSignalToNoise = 2.0;
+
 GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, const SimConfig& nominal,
-                       DiagnosisArtifacts* artifacts) {
+                       double upstream_share, DiagnosisArtifacts* artifacts) {
   GapWhere where;
   double best = -1.0;
   for (const std::string& name : subsystemNames()) {
@@ -485,11 +497,18 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, c
       where.subsystem = name;
     }
   }
-  // The steering replay takes the chassis replay's lateral velocity: a chassis mismatch shows in both.
-  // Report the upstream subsystem when it carries a comparable share.
-  if (where.subsystem == "steering" && ev.scores.count("chassis") &&
-      ev.scores.at("chassis").excess >= 0.3 * ev.scores.at("steering").excess && ev.scores.at("chassis").excess > 0.02) {
-    where.subsystem = "chassis";
+  // The steering replay takes the chassis replay's lateral velocity, and its tiny inertia J_F amplifies
+  // any aligning-moment mismatch: a chassis cause shows in both, often more in the steering. A pure
+  // steering effect leaves the chassis at its noise floor. So the chassis is reported when it carries
+  // a real share of the steering's excess and stands clearly above its own noise floor. (A steering
+  // effect that shakes the wheel fast — e.g. a torque limit that lets the steering loop chatter — can
+  // leave the chassis replay of the sampled angle noisy in one trace: excess, but not above the floor.)
+  if (where.subsystem == "steering" && ev.scores.count("chassis")) {
+    const SubsystemScore& chassis = ev.scores.at("chassis");
+    if (chassis.excess >= upstream_share * ev.scores.at("steering").excess && chassis.excess > 0.005 &&
+        chassis.nrmse >= kUpstreamSignalToNoise * chassis.floor) {
+      where.subsystem = "chassis";
+    }
   }
   if (where.subsystem.empty()) return where;
   const SubsystemReplay& replay = ev.replays.at(where.subsystem);
@@ -781,7 +800,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   everything.insert(everything.end(), held.begin(), held.end());
   // (For the "where" report, the union of training and held-out data.)
   const Evaluation nominal_all = evaluate(nominal, everything, all, options.replay);
-  report.where = whereAnalysis(nominal_all, everything, nominal, artifacts);
+  report.where = whereAnalysis(nominal_all, everything, nominal, options.upstream_share, artifacts);
   const double gap_before = gapOf(nominal_held.scores, {});
 
   // ---- Which ----------------------------------------------------------------------------------
@@ -813,7 +832,12 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   // A candidate can be the cause only if it changes the subsystem where the gap lies (a pure steering
   // effect leaves no chassis residual; no candidate touches the actuator subsystem).
   const std::string& where_subsystem = report.where.subsystem;
-  auto eligible = [&](const CandidateEffect& e) {
+  std::set<std::string> pinned;
+  for (const auto& fit : fits) {
+    if (fit.ok && fit.at_bound) pinned.insert(fit.effect->name);
+  }
+  auto changesWhere = [&](const std::string& effect) {
+    const CandidateEffect& e = candidateEffect(effect);
     return std::find(e.subsystems.begin(), e.subsystems.end(), where_subsystem) != e.subsystems.end();
   };
   for (const auto& fit : fits) {
@@ -836,6 +860,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
       r.shrink = gap_before > 0.0 ? 1.0 - fit.heldout_after / gap_before : 0.0;
     }
     r.score = fit.ok ? fit.evidence : 0.0;
+    if (fit.ok && fit.at_bound) report.notes.push_back(fit.effect->name + ": a fitted parameter is pinned at a bound of its range");
     report.ranking.push_back(r);
   }
   std::sort(report.ranking.begin(), report.ranking.end(),
@@ -844,16 +869,12 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   // ---- Verdict --------------------------------------------------------------------------------
   GapVerdict& v = report.verdict;
   v.gap_before = gap_before;
-  const RankedEffect* best = nullptr;
-  const RankedEffect* second = nullptr;
-  for (const auto& r : report.ranking) {
-    if (!eligible(candidateEffect(r.effect))) continue;
-    if (best == nullptr) {
-      best = &r;
-    } else if (second == nullptr) {
-      second = &r;
-    }
-  }
+  const WinnerSelection selection =
+      selectWinner(report.ranking, changesWhere, pinned, options.min_shrink, options.min_evidence_per_parameter);
+  const RankedEffect* top = selection.top;
+  const RankedEffect* best = selection.winner;
+  const RankedEffect* second = selection.runner_up;
+  const bool pinned_winner = selection.winner_pinned;
   std::ostringstream reason;
   if (gap_before < options.detection_gap) {
     v.effect = "unexplained";
@@ -862,21 +883,21 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     v.confidence = std::clamp(1.0 - gap_before / options.detection_gap, 0.0, 1.0) * 0.5 + 0.5;
     reason << "the nominal model matches the held-out data to within noise (gap " << formatNumber(gap_before)
            << " < detection threshold " << formatNumber(options.detection_gap) << "): nothing to explain";
-  } else if (best == nullptr || best->shrink < options.min_shrink ||
-             gap_before - best->heldout_gap_after < options.min_gap_reduction) {
+  } else if (best == nullptr) {
     v.effect = "unexplained";
     v.gap_after = gap_before;
     v.shrink = 0.0;
-    const double s = best ? best->shrink : 0.0;
+    const double s = top ? std::max(0.0, top->shrink) : 0.0;
     v.confidence = std::clamp(1.0 - s / options.min_shrink, 0.0, 1.0) * 0.5 + 0.5;
     reason << "a gap of " << formatNumber(gap_before) << " (mostly in the " << where_subsystem
            << " subsystem) that no candidate explains: ";
-    if (best == nullptr) {
+    if (top == nullptr) {
       reason << "no candidate changes the " << where_subsystem << " subsystem";
     } else {
-      reason << "the best candidate that changes it, " << best->effect << ", removes " << formatNumber(100.0 * s)
-             << " % of it on held-out data (needs " << formatNumber(100.0 * options.min_shrink) << " % and "
-             << formatNumber(options.min_gap_reduction) << ")";
+      reason << "the best candidate that changes it, " << top->effect << ", removes " << formatNumber(100.0 * s)
+             << " % of it on held-out data with evidence " << formatNumber(top->score) << " (needs "
+             << formatNumber(100.0 * options.min_shrink) << " % and " << formatNumber(options.min_evidence_per_parameter)
+             << " per parameter)";
     }
   } else {
     v.effect = best->effect;
@@ -885,8 +906,9 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     // Confidence: how much of the gap it explains, times how clearly it beats the runner-up.
     const double margin = second ? (best->shrink - second->shrink) / std::max(1e-9, best->shrink) : 1.0;
     v.confidence = std::clamp(best->shrink, 0.0, 1.0) * (0.5 + 0.5 * std::clamp(margin / 0.3, 0.0, 1.0));
+    if (pinned_winner) v.confidence *= 0.5;
     for (const auto& r : report.ranking) {
-      if (&r != best && eligible(candidateEffect(r.effect)) && r.shrink >= options.min_shrink &&
+      if (&r != best && changesWhere(r.effect) && r.shrink >= options.min_shrink &&
           best->shrink - r.shrink < 0.1) {
         v.confusable_with.push_back(r.effect);
       }
@@ -894,6 +916,10 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     reason << best->effect << " removes " << formatNumber(100.0 * best->shrink) << " % of the held-out gap ("
            << formatNumber(gap_before) << " -> " << formatNumber(best->heldout_gap_after) << ")";
     if (second) reason << "; next best " << second->effect << " removes " << formatNumber(100.0 * second->shrink) << " %";
+    if (pinned_winner) {
+      reason << "; a fitted parameter sits at a bound of its range (the effect's form differs from the candidate's, "
+                "or the data fix only a combination of its parameters): confidence halved";
+    }
     const auto& known = knownLookAlikes(best->effect);
     for (const auto& c : v.confusable_with) {
       if (std::find(known.begin(), known.end(), c) != known.end()) reason << "; " << c << " is a known look-alike";

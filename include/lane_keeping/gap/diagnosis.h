@@ -10,8 +10,13 @@
 ///    mean-square residuals of the subsystems it changes — Levenberg-Marquardt (Ceres, central numeric
 ///    derivatives) for smooth parameters, a grid and golden section for delays and saturations — with
 ///    the nominal parameters held at their configured values. It is then scored on held-out data. A
-///    candidate earns its parameters only if it removes at least `min_shrink` of the held-out gap and
-///    at least `min_gap_reduction` of it in absolute terms; otherwise the verdict is `unexplained`.
+///    candidate earns its parameters only if (a) it changes the subsystem where the gap lies, (b) it
+///    removes at least `min_shrink` of the held-out gap, and (c) the held-out evidence (the drop of the
+///    noise-normalised squared residual, a chi-square-like count) is at least
+///    `min_evidence_per_parameter` per fitted parameter. Noise fitted on training data does not carry
+///    over to held-out data, so (b) and (c) reject candidates that merely fit noise; otherwise the
+///    verdict is `unexplained`. A fit pinned at a bound of its range wins only when no unpinned
+///    candidate qualifies (winner_selection.h).
 /// 4. How far: the gap before and after adding the winner, per subsystem on held-out data and in a
 ///    closed-loop replay of the held-out runs.
 #include <functional>
@@ -30,9 +35,10 @@ struct DiagnosisOptions {
   ReplayOptions replay;
   double block_length = 3.0;        ///< [s] train/held-out blocks when a single log is given
   double start_margin = 0.6;        ///< [s] skipped at the start of each log (delayed inputs need history)
-  double detection_gap = 0.03;      ///< nominal held-out gap below which there is nothing to explain
+  double detection_gap = 1e-3;      ///< nominal held-out gap below which there is nothing to explain
   double min_shrink = 0.3;          ///< fraction of the held-out gap a candidate must remove
-  double min_gap_reduction = 0.02;  ///< absolute held-out gap a candidate must remove
+  double min_evidence_per_parameter = 50.0;  ///< held-out evidence a candidate needs per fitted parameter
+  double upstream_share = 0.2;      ///< chassis excess (relative to steering) that makes the chassis the "where"
   int threads = 2;                  ///< candidates fitted in parallel
   bool closed_loop = true;          ///< run the closed-loop replays of "how far"
   std::vector<std::string> effects; ///< restrict the candidates (empty: all)
