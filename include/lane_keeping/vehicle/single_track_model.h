@@ -159,7 +159,7 @@ class SingleTrackModel {
     const T front_lateral = s1 + b * s2;  // lateral velocity of F in the body frame
     Contacts<T> out;
     out.u = (V - front_lateral * s) * inv_c;
-    const double aF = front_.contactHalfLength(), aR = rear_.contactHalfLength();
+    const double aF = front_half_length_, aR = rear_half_length_;
     out.front.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c * inv_V + s * inv_c;
     out.front.wheel_speed = V;
     out.front.lateral_slip_speed = V * s * inv_c - front_lateral * inv_c;  // -(lateral velocity of F across the wheel)
@@ -316,6 +316,7 @@ class SingleTrackModel {
   double inv_JF_;  ///< 1 / J_F
   double speed_k_; ///< 2 pi / speed_wavelength
   int front_offset_, rear_offset_, state_size_;  ///< state layout, fixed at construction
+  double front_half_length_, rear_half_length_;  ///< a of eq 8's leading points (the tires' contactHalfLength())
 };
 
 /// Builds the model of a configuration: static axle loads (DESIGN §3) and one tire per axle; rigid,
