@@ -15,12 +15,6 @@ namespace {
 
 using C = LogSignals::Channel;
 
-double rms(const std::vector<double>& v) {
-  double sum = 0.0;
-  for (double x : v) sum += x * x;
-  return v.empty() ? 0.0 : std::sqrt(sum / v.size());
-}
-
 /// Normalisation of an output: RMS about its mean over the whole log (never below a tiny floor).
 double scaleOf(const std::vector<double>& v) {
   double mean = 0.0;
@@ -249,7 +243,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
   const double limit = config.simulation.divergence.max_steering_angle;
 
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
-  std::size_t hint = 0, torque_hint = 0, sigma1_hint = 0;
+  std::size_t hint = 0, torque_hint = 0;
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     full[kDelta] = q[0];
     full[kSigma3] = q[1];
