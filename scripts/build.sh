@@ -20,6 +20,10 @@ for link in "$PKG"/*; do  # drop links to entries that no longer exist
   [ -L "$link" ] && [ ! -e "$link" ] && rm "$link"
 done
 cd "$WS"
+# catkin writes the environment of its test targets (build/catkin_generated/setup_cached.sh) at
+# configure time and lists only the devel folders that exist then: on a fresh workspace the
+# generated Python messages would be missing from the rostests' PYTHONPATH. Create them first.
+mkdir -p "$WS/devel/lib/python3/dist-packages" "$WS/devel/lib/pkgconfig"
 JOBS="${LK_JOBS:-$(nproc)}"
 # Always build every target first (tools must not go stale against a rebuilt library), then any
 # extra targets asked for (e.g. tests).
@@ -30,4 +34,8 @@ JOBS="${LK_JOBS:-$(nproc)}"
   echo "[build] catkin_make failed; full log: $BUILD_ROOT/catkin_make.log" >&2
   exit 1
 }
+# A workspace configured before that fix still has the empty PYTHONPATH: reconfigure it once.
+if ! grep -q "^export PYTHONPATH='.*dist-packages" "$WS/build/catkin_generated/setup_cached.sh"; then
+  (cd "$WS/build" && cmake . >>"$BUILD_ROOT/catkin_make.log" 2>&1)
+fi
 echo "[build] ok ($WS)"
