@@ -14,26 +14,14 @@ namespace lane_keeping {
 namespace {
 
 using deur::kDeg;
+using deur::Case;
+using deur::cases;
+using deur::kSpeed;
 using deur::LugreSetup;
-
-constexpr double kSpeed = 15.0;  // V [m/s]
+using deur::relErr;
 
 LugreDistributedTire distributed(const LugreSetup& s, int n) {
   return LugreDistributedTire(s.coefficients, s.friction, s.pressure, n, false);
-}
-
-double relErr(double value, double reference) { return std::fabs(value - reference) / std::fabs(reference); }
-
-struct Case {
-  const char* name;
-  LugreSetup setup;
-};
-
-std::vector<Case> cases() {
-  return {{"default uniform", deur::defaultSetup(ContactPressure::uniform())},
-          {"default trapezoid", deur::defaultSetup(ContactPressure::trapezoidal(0.134, 0.707))},
-          {"Deur A.1 uniform", deur::deurUniformSetup()},
-          {"Deur A.2 trapezoid", deur::deurTrapezoidSetup()}};
 }
 
 // Slips where M is well away from its sign change (Deur A.2 changes sign near 12 deg) and y = L/Z

@@ -19,26 +19,14 @@ namespace lane_keeping {
 namespace {
 
 using deur::kDeg;
+using deur::Case;
+using deur::cases;
+using deur::kSpeed;
 using deur::LugreSetup;
-
-constexpr double kSpeed = 15.0;  // V [m/s]
+using deur::relErr;
 
 LugreLumpedTire lumped(const LugreSetup& s, double kappa_constant = 0.0, double lambda2 = 0.0) {
   return LugreLumpedTire(s.coefficients, s.friction, s.pressure, kappa_constant, lambda2);
-}
-
-double relErr(double value, double reference) { return std::fabs(value - reference) / std::fabs(reference); }
-
-struct Case {
-  const char* name;
-  LugreSetup setup;
-};
-
-std::vector<Case> cases() {
-  return {{"default uniform", deur::defaultSetup(ContactPressure::uniform())},
-          {"default trapezoid", deur::defaultSetup(ContactPressure::trapezoidal(0.134, 0.707))},
-          {"Deur A.1 uniform", deur::deurUniformSetup()},
-          {"Deur A.2 trapezoid", deur::deurTrapezoidSetup()}};
 }
 
 // ---------------------------------------------------------------- steady state

@@ -129,5 +129,23 @@ inline double aligningStiffness(double L, double sigma0y, double rl, double rr) 
   return L * L * sigma0y / 6.0 * (rr * rr * rr + rl * rl - rl * rl * rl) / (1.0 + rr - rl);
 }
 
+/// Wheel-centre speed of the steady-state checks [m/s].
+constexpr double kSpeed = 15.0;
+
+inline double relErr(double value, double reference) { return std::fabs(value - reference) / std::fabs(reference); }
+
+/// The parameter sets every LuGre steady-state test runs over.
+struct Case {
+  const char* name;
+  LugreSetup setup;
+};
+
+inline std::vector<Case> cases() {
+  return {{"default uniform", defaultSetup(ContactPressure::uniform())},
+          {"default trapezoid", defaultSetup(ContactPressure::trapezoidal(0.134, 0.707))},
+          {"Deur A.1 uniform", deurUniformSetup()},
+          {"Deur A.2 trapezoid", deurTrapezoidSetup()}};
+}
+
 }  // namespace deur
 }  // namespace lane_keeping
