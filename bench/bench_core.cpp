@@ -1,7 +1,7 @@
 // Benchmark of the core simulator (issue #2): the closed loop's real-time factor (simulated seconds
 // per wall second, one core) for every tire model at dt = 1e-4 s and 1e-5 s, and the cost of one
 // model derivative. Prints a table; numbers go in the README. Not a test: it asserts nothing.
-//   lk_bench_core [--duration SECONDS] [--repeat N]
+//   lk_bench_core [--duration SECONDS] [--repeat N] [--tire MODEL]
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -65,16 +65,19 @@ double derivativeNanoseconds(const std::string& tire) {
 int main(int argc, char** argv) {
   double duration = 20.0;
   int repeat = 3;
+  std::string only;  // one tire model, e.g. for profiling
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string arg = argv[i];
     if (arg == "--duration") duration = std::atof(argv[i + 1]);
     if (arg == "--repeat") repeat = std::atoi(argv[i + 1]);
+    if (arg == "--tire") only = argv[i + 1];
   }
   std::printf("lane_keeping core benchmark: Fig 6 closed loop (brush/LuGre tires), %g s simulated, best of %d,\n"
               "one core, log at 1 kHz; distributed LuGre with N = 50 bristles per direction.\n\n",
               duration, repeat);
   std::printf("%-18s %14s %16s %16s\n", "tire model", "derivative ns", "RTF dt=1e-4 s", "RTF dt=1e-5 s");
   for (const std::string tire : {"brush", "lugre_lumped", "lugre_distributed", "magic_formula"}) {
+    if (!only.empty() && tire != only) continue;
     std::printf("%-18s %14.1f", tire.c_str(), derivativeNanoseconds(tire));
     for (double step : {1e-4, 1e-5}) {
       // dt = 1e-5 runs a tenth of the duration (same number of steps).

@@ -223,7 +223,7 @@ TEST(ContactPressure, SmoothAtTinyYAndAcrossSeriesSwitches) {
 }
 
 TEST(ContactPressure, FactorsEqualKappaAndLambda) {
-  // factors() (used by the lumped model) evaluates uniform kappa, lambda by Taylor polynomials below
+  // factors() (used by the lumped model) evaluates uniform kappa, lambda by degree-8 polynomials below
   // y = 0.4 and through phi-functions above (series below y = 1, recurrence beyond): it must agree
   // with kappa(), lambda() everywhere, across both switches, and as y -> inf (y = L c0 / r|w|: a wheel
   // speed near zero), where lambda -> 1.

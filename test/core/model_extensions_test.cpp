@@ -116,7 +116,7 @@ TEST(ModelExtensions, StiffColumnBehavesLikeARigidOneWithTheColumnInertiaAdded) 
   Eigen::VectorXd r = rigid.initialState(InitialState{});
   for (int i = 0; i < 2000; ++i) {
     rk4.step([&](int, const Eigen::VectorXd& s, Eigen::VectorXd& d) { rigid.derivative(s.data(), 20.0, d.data()); },
-             1e-5, r);  // (same workspace size is fine: Rk4 resizes on assignment)
+             1e-5, r);  // (a workspace of another size is fine: Rk4 resizes it)
   }
   EXPECT_NEAR(x[kDelta], r[kDelta], 0.01 * std::fabs(r[kDelta]));
   EXPECT_GT(std::fabs(r[kDelta]), 1e-4);

@@ -48,7 +48,7 @@ class LugreLumpedTire {
         sigma0y_over_g_(friction.isConstant() ? coefficients.sigma0y / friction.constantValue() : 0.0) {}
 
   template <typename T>
-  TireForces<T> evaluate(const ContactKinematics<T>& k, const T* z, T* z_dot) const {
+  [[gnu::always_inline]] TireForces<T> evaluate(const ContactKinematics<T>& k, const T* z, T* z_dot) const {
     using std::abs;
     const double L = c_.contact_length;
     const T& w = k.wheel_speed;

@@ -22,6 +22,7 @@
 #include <Eigen/Core>
 
 #include "lane_keeping/common/scalar.h"
+#include "lane_keeping/common/sin_cos.h"
 #include "lane_keeping/sim/simulation_params.h"
 #include "lane_keeping/tire/tire.h"
 #include "lane_keeping/vehicle/steering_params.h"
@@ -99,10 +100,7 @@ class SingleTrackModel {
   template <typename T>
   struct Trig {
     explicit Trig(const T& delta) {
-      using std::cos;
-      using std::sin;
-      c = cos(delta);
-      s = sin(delta);
+      sinCos(delta, &s, &c);
       inv_c = 1.0 / c;
     }
     T c, s, inv_c;
@@ -119,14 +117,13 @@ class SingleTrackModel {
 
   template <typename T>
   void kinematics(const T* x, const Trig<T>& steer, T* x_dot) const {
-    using std::cos;
-    using std::sin;
     const double b = p_.cgToFrontAxle();
     const T V = speedAt(x);
     const T& c = steer.c;
     const T& s = steer.s;
     const T& inv_c = steer.inv_c;
-    const T cp = cos(x[kPsi]), sp = sin(x[kPsi]);
+    T sp, cp;
+    sinCos(x[kPsi], &sp, &cp);
     const T tan_d = s * inv_c;
     // sin(psi + delta) and cos(psi + delta) by the addition theorems.
     const T s_pd = sp * c + cp * s;
