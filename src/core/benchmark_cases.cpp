@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <map>
-#include <random>
 #include <sstream>
 
 #include "lane_keeping/common/errors.h"
@@ -163,23 +162,6 @@ std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre) {
     }
   }
   return cases;
-}
-
-void addSensorNoise(GapLog& g, const SensorNoise& n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  auto add = [&](std::vector<double>& v, double sigma) {
-    for (auto& x : v) x += sigma * unit(rng);
-  };
-  add(g.x, n.position);
-  add(g.y, n.position);
-  add(g.psi, n.heading);
-  add(g.yaw_rate, n.yaw_rate);
-  add(g.delta, n.steering);
-  add(g.delta_rate, n.steering_rate);
-  add(g.torque, n.torque);
-  add(g.ay, n.lateral_acceleration);
-  add(g.v, n.speed);
 }
 
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise, double log_rate) {

@@ -59,7 +59,7 @@ SubsystemScore scoreReplay(const SubsystemReplay& replay) {
 
 double combinedGap(const std::vector<SubsystemScore>& scores) {
   double sum = 0.0;
-  for (const auto& s : scores) sum += s.excess * s.excess;
+  for (const auto& s : scores) sum += std::max(0.0, s.excess * s.excess - s.reference * s.reference);
   return std::sqrt(sum);
 }
 

@@ -10,7 +10,8 @@
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
 //                  "shrink", "score"}],
 //     "verdict": { "effect", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..] },
-//     "how_far": { "before", "after", "shrink", "subsystems_before": {}, "subsystems_after": {} } }
+//     "how_far": { "before", "after", "shrink", "subsystems_before": {}, "subsystems_after": {},
+//                  "subsystems_noise_reference": {} } }
 // how_far.shrink = 1 - after / before is derived (written for readers, ignored when read back).
 // Non-finite numbers (NaN, +-Inf) are written as JSON null (JSON has no NaN) and read back as NaN,
 // so an infinite value does not survive a round trip.
@@ -105,6 +106,7 @@ OrderedJson toJson(const ClosedLoopGap& h) {
   out["shrink"] = (std::isfinite(h.before) && h.before > 0.0) ? number(1.0 - h.after / h.before) : OrderedJson(nullptr);
   out["subsystems_before"] = numberMap(h.subsystems_before);
   out["subsystems_after"] = numberMap(h.subsystems_after);
+  out["subsystems_noise_reference"] = numberMap(h.subsystems_noise_reference);
   return out;
 }
 
@@ -335,6 +337,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(*h, hp, "after", &rep.how_far.after);
     r.get(*h, hp, "subsystems_before", &rep.how_far.subsystems_before);
     r.get(*h, hp, "subsystems_after", &rep.how_far.subsystems_after);
+    r.get(*h, hp, "subsystems_noise_reference", &rep.how_far.subsystems_noise_reference);
   }
   return rep;
 }

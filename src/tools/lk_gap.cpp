@@ -3,9 +3,8 @@
 //          [--holdout other.csv ...] --report DIR [--effects a,b,...] [--threads N] [--no-plots] [--quiet]
 // Writes DIR/report.json (DESIGN §5 fields), DIR/report.md and plots (residuals, spectra, overlays,
 // ranking). Exit status: 0 ok, 2 bad configuration, 4 bad input data, 1 other error.
-#include <sys/stat.h>
-
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -28,7 +27,9 @@ void usage(std::ostream& out) {
          "  --config   the nominal configuration (the same YAML lk_simulate and the nodes use)\n"
          "  --log      a log of a real run (CSV with DESIGN §5 columns, or a bag of the suite's topics)\n"
          "  --holdout  held-out runs for scoring; without them, alternate 3 s blocks of the logs are held out\n"
-         "  --report   output directory: report.json, report.md, *.csv, *.png\n";
+         "  --report   output directory: report.json, report.md, *.csv, *.png\n"
+         "  --noise-reference-draws N   noise draws of the noise-only reference the gap is net of\n"
+         "             (default 3; 0 = raw excess, no reference)\n";
 }
 
 std::vector<std::string> split(const std::string& text) {
@@ -66,6 +67,7 @@ int main(int argc, char** argv) {
     else if (arg == "--report") report_dir = value();
     else if (arg == "--effects") options.effects = split(value());
     else if (arg == "--threads") options.threads = std::atoi(value().c_str());
+    else if (arg == "--noise-reference-draws") options.noise_reference_draws = std::atoi(value().c_str());
     else if (arg == "--no-plots") plots = false;
     else if (arg == "--quiet") quiet = true;
     else if (arg == "--help" || arg == "-h") {
@@ -82,6 +84,10 @@ int main(int argc, char** argv) {
     usage(std::cerr);
     return 2;
   }
+  if (options.noise_reference_draws < 0 || options.noise_reference_draws > 100) {
+    std::cerr << "lk_gap: --noise-reference-draws must be between 0 and 100\n";
+    return 2;
+  }
   registerBagLogReader([](const std::string& path) { return readBagLog(path); });
   try {
     const SimConfig nominal = loadSimConfig(configs, sets);
@@ -94,7 +100,10 @@ int main(int argc, char** argv) {
       if (!known) throw ConfigError("--effects: '" + effect + "' is not a candidate effect");
     }
     if (!quiet) options.progress = [](const std::string& m) { std::cerr << "[lk_gap] " << m << "\n"; };
-    ::mkdir(report_dir.c_str(), 0755);
+    // Created up front (with parents): a long diagnosis must not end on "cannot open for writing".
+    std::error_code mkdir_error;
+    std::filesystem::create_directories(report_dir, mkdir_error);
+    if (mkdir_error) throw InputError("--report " + report_dir + ": cannot create the directory (" + mkdir_error.message() + ")");
     DiagnosisArtifacts artifacts;
     const GapReport report = diagnoseGap(nominal, training, held, options, &artifacts);
     writeGapReportJson(report_dir + "/report.json", report);

@@ -16,19 +16,10 @@
 
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/gap_log.h"
+#include "lane_keeping/gap/noise_reference.h"
 
 namespace lane_keeping {
 
-struct SensorNoise {
-  double position = 0.01;     ///< x, y [m]
-  double heading = 5e-4;      ///< psi [rad]
-  double yaw_rate = 2e-3;     ///< [rad/s]
-  double steering = 2e-4;     ///< delta [rad]
-  double steering_rate = 5e-3;  ///< [rad/s]
-  double torque = 0.2;        ///< [N m]
-  double lateral_acceleration = 0.02;  ///< [m/s^2]
-  double speed = 0.02;        ///< [m/s]
-};
 
 struct BenchmarkCase {
   std::string id;                  ///< e.g. "steering_friction-large-sinusoid"
@@ -50,6 +41,5 @@ std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre = 6);
 /// Simulates the truth of a case and returns its noisy log (throws if the truth run diverges).
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise = {}, double log_rate = 500.0);
 /// Adds seeded Gaussian noise to every measured column.
-void addSensorNoise(GapLog& log, const SensorNoise& noise, unsigned seed);
 
 }  // namespace lane_keeping

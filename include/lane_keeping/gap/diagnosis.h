@@ -36,6 +36,7 @@ struct DiagnosisOptions {
   double block_length = 3.0;        ///< [s] train/held-out blocks when a single log is given
   double start_margin = 0.6;        ///< [s] skipped at the start of each log (delayed inputs need history)
   double detection_gap = 1e-3;      ///< nominal held-out gap below which there is nothing to explain
+  int noise_reference_draws = 3;    ///< noise draws of the noise-only reference (0: no reference)
   double min_shrink = 0.3;          ///< fraction of the held-out gap a candidate must remove
   double min_evidence_per_parameter = 50.0;  ///< held-out evidence a candidate needs per fitted parameter
   double upstream_share = 0.2;      ///< chassis excess (relative to steering) that makes the chassis the "where"

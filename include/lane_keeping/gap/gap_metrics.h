@@ -7,8 +7,10 @@
 ///  * excess = sqrt(max(0, nrmse^2 - 1.1 floor^2)): the mismatch that is not noise (a residual variance
 ///    within 10 % of the noise variance counts as noise: the floor estimate scatters, and filtered noise
 ///    is not quite white).
-/// A subsystem's figures are the RMS over its outputs; the total gap is sqrt(sum over subsystems of
-/// excess^2). Shrink = 1 - gap_after / gap_before.
+/// A subsystem's figures are the RMS over its outputs. `reference` is the excess the same replay shows
+/// on the log's noise-only reference (noise_reference.h): what measurement noise leaves through the
+/// replay's inputs even under a perfect model. The total gap is
+/// sqrt(sum over subsystems of max(0, excess^2 - reference^2)). Shrink = 1 - gap_after / gap_before.
 #include <string>
 #include <vector>
 
@@ -26,12 +28,13 @@ struct SubsystemScore {
   std::string name;
   std::vector<TraceScore> traces;
   double nrmse = 0.0, floor = 0.0, excess = 0.0;
+  double reference = 0.0;  ///< excess on the noise-only reference (0: none measured)
   int diverged_intervals = 0;
 };
 
 TraceScore scoreTrace(const ReplayTrace& trace);
 SubsystemScore scoreReplay(const SubsystemReplay& replay);
-/// sqrt(sum of excess^2) over the given subsystems.
+/// sqrt(sum of max(0, excess^2 - reference^2)) over the given subsystems.
 double combinedGap(const std::vector<SubsystemScore>& scores);
 
 }  // namespace lane_keeping

@@ -67,8 +67,11 @@ struct GapVerdict {
 struct ClosedLoopGap {
   double before = 0.0;  ///< closed-loop replay gap (held-out) with the nominal model
   double after = 0.0;   ///< with the winning effect added
-  std::map<std::string, double> subsystems_before;  ///< per-subsystem held-out nrmse
+  std::map<std::string, double> subsystems_before;  ///< per-subsystem held-out excess (gap_metrics.h)
   std::map<std::string, double> subsystems_after;
+  /// Per-subsystem excess of the noise-only reference (noise_reference.h): the part of each excess a
+  /// perfect model would leave; the gap subtracts it in quadrature.
+  std::map<std::string, double> subsystems_noise_reference;
 };
 
 struct GapReport {

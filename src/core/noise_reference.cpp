@@ -1,0 +1,62 @@
+#include "lane_keeping/gap/noise_reference.h"
+
+#include <cmath>
+#include <random>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/common/time.h"
+#include "lane_keeping/sim/closed_loop.h"
+
+namespace lane_keeping {
+
+void addSensorNoise(GapLog& g, const SensorNoise& n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  auto add = [&](std::vector<double>& v, double sigma) {
+    for (auto& x : v) x += sigma * unit(rng);
+  };
+  add(g.x, n.position);
+  add(g.y, n.position);
+  add(g.psi, n.heading);
+  add(g.yaw_rate, n.yaw_rate);
+  add(g.delta, n.steering);
+  add(g.delta_rate, n.steering_rate);
+  add(g.torque, n.torque);
+  add(g.ay, n.lateral_acceleration);
+  add(g.v, n.speed);
+}
+
+SensorNoise estimatedNoise(const LogSignals& log) {
+  using C = LogSignals;
+  SensorNoise n;
+  // x and y share one sensor; the larger estimate is the safer one (a curving path inflates neither much).
+  n.position = std::max(log.noise(C::kX), log.noise(C::kY));
+  n.heading = log.noise(C::kPsi);
+  n.yaw_rate = log.noise(C::kYawRate);
+  n.steering = log.noise(C::kDelta);
+  n.torque = log.noise(C::kTorque);
+  n.steering_rate = log.log().hasSteeringRate() ? log.noise(C::kDeltaRate) : 0.0;
+  n.lateral_acceleration = log.log().hasLateralAcceleration() ? log.noise(C::kLateralAcceleration) : 0.0;
+  n.speed = log.log().hasSpeed() ? log.noise(C::kSpeed) : 0.0;
+  return n;
+}
+
+GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsigned seed) {
+  SimConfig c = nominal;
+  const double step = log.log().medianStep();
+  c.simulation.log_rate = 1.0 / step;
+  c.simulation.duration = log.end() - log.start() + step;
+  const RunResult run = ClosedLoop(c).run();
+  if (run.diverged()) {
+    throw LaneKeepingError("noise reference for " + log.log().source + ": the nominal closed loop " + run.message);
+  }
+  GapLog out = gapLogFromRows(run.rows, log.log().source + " (noise reference)");
+  for (double& t : out.t) t += log.start();
+  if (!log.log().hasSpeed()) out.v.clear();
+  if (!log.log().hasLateralAcceleration()) out.ay.clear();
+  if (!log.log().hasSteeringRate()) out.delta_rate.clear();
+  addSensorNoise(out, estimatedNoise(log), seed);
+  return out;
+}
+
+}  // namespace lane_keeping

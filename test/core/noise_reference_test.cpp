@@ -1,0 +1,83 @@
+// The noise-only reference of the gap diagnosis (gap/noise_reference.h): it must reproduce a log's
+// noise levels and span, and account for the excess that noise alone leaves in the replays, so that
+// the gap of a log without any effect is (nearly) all reference.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lane_keeping/gap/benchmark_cases.h"
+#include "lane_keeping/gap/diagnosis.h"
+#include "lane_keeping/gap/noise_reference.h"
+
+namespace lane_keeping {
+namespace {
+
+BenchmarkCase shortCase(const std::string& id, double duration) {
+  for (BenchmarkCase c : benchmarkCases()) {
+    if (c.id != id) continue;
+    c.truth_overlay.push_back("simulation.duration=" + std::to_string(duration));
+    return c;
+  }
+  throw std::runtime_error("no case " + id);
+}
+
+TEST(NoiseReference, EstimatesTheLogsNoiseAndCoversItsSpan) {
+  const SensorNoise truth;  // the benchmark's noise levels
+  const GapLog log = generateBenchmarkLog(shortCase("none-1-lane_change", 12.0), truth, 200.0);
+  const LogSignals signals(log);
+  const SensorNoise estimated = estimatedNoise(signals);
+  EXPECT_NEAR(estimated.position, truth.position, 0.1 * truth.position);
+  EXPECT_NEAR(estimated.heading, truth.heading, 0.1 * truth.heading);
+  EXPECT_NEAR(estimated.yaw_rate, truth.yaw_rate, 0.1 * truth.yaw_rate);
+  EXPECT_NEAR(estimated.steering, truth.steering, 0.1 * truth.steering);
+  EXPECT_NEAR(estimated.torque, truth.torque, 0.1 * truth.torque);
+
+  SimConfig nominal = benchmarkNominal("lane_change");
+  const GapLog reference = noiseReferenceLog(nominal, signals, 5);
+  EXPECT_NEAR(reference.t.front(), log.t.front(), 1e-9);
+  EXPECT_GE(reference.t.back(), log.t.back() - 1e-9);
+  EXPECT_NEAR(reference.medianStep(), log.medianStep(), 1e-9);
+  EXPECT_EQ(reference.hasSteeringRate(), log.hasSteeringRate());
+  // Its own noise, estimated the same way, is the log's.
+  const SensorNoise again = estimatedNoise(LogSignals(reference));
+  EXPECT_NEAR(again.steering, estimated.steering, 0.1 * estimated.steering);
+  EXPECT_NEAR(again.torque, estimated.torque, 0.1 * estimated.torque);
+
+  // A log without the optional columns gets a reference without them.
+  GapLog bare = log;
+  bare.v.clear();
+  bare.ay.clear();
+  bare.delta_rate.clear();
+  const GapLog bare_reference = noiseReferenceLog(nominal, LogSignals(bare), 5);
+  EXPECT_FALSE(bare_reference.hasSpeed() || bare_reference.hasLateralAcceleration() || bare_reference.hasSteeringRate());
+}
+
+TEST(NoiseReference, AccountsForTheSteeringExcessOfANoEffectLog) {
+  // Noise on the logged torque and yaw rate drives the steering replay: a log with no effect shows a
+  // steering excess that the reference must reproduce (a factor 0.6-1.6 here; the benchmark's 12
+  // no-effect logs: within 10 % on average), so that the net gap is much smaller than the raw one.
+  const GapLog log = generateBenchmarkLog(shortCase("none-2-sinusoid", 16.0), SensorNoise{}, 200.0);
+  SimConfig nominal = benchmarkNominal("sinusoid");
+  nominal.simulation.duration = 16.0;
+  DiagnosisOptions options;
+  options.effects = {"actuation_delay"};
+  options.closed_loop = false;
+  const GapReport with_reference = diagnoseGap(nominal, {log}, {}, options);
+  const double steering = with_reference.how_far.subsystems_before.at("steering");
+  const double reference = with_reference.how_far.subsystems_noise_reference.at("steering");
+  ASSERT_GT(steering, 0.0);
+  EXPECT_GT(reference, 0.6 * steering);
+  EXPECT_LT(reference, 1.6 * steering);
+  double raw2 = 0.0;
+  for (const auto& [name, excess] : with_reference.how_far.subsystems_before) raw2 += excess * excess;
+  EXPECT_LT(with_reference.verdict.gap_before, 0.7 * std::sqrt(raw2));
+  EXPECT_EQ(with_reference.verdict.effect, "unexplained") << with_reference.verdict.reason;
+
+  options.noise_reference_draws = 0;  // the raw excess
+  const GapReport raw = diagnoseGap(nominal, {log}, {}, options);
+  EXPECT_NEAR(raw.verdict.gap_before, std::sqrt(raw2), 1e-12);
+  for (const auto& [name, value] : raw.how_far.subsystems_noise_reference) EXPECT_EQ(value, 0.0) << name;
+}
+
+}  // namespace
+}  // namespace lane_keeping
