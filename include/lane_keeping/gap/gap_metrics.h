@@ -11,6 +11,8 @@
 /// on the log's noise-only reference (noise_reference.h): what measurement noise leaves through the
 /// replay's inputs even under a perfect model. The total gap is
 /// sqrt(sum over subsystems of max(0, excess^2 - reference^2)). Shrink = 1 - gap_after / gap_before.
+/// (Clipped per output on purpose: summing the signed nrmse^2 - 1.1 floor^2 was tried; the tracker's and
+/// actuator's large floors then scatter more than a steering gap is worth — docs/gap.md.)
 #include <string>
 #include <vector>
 
