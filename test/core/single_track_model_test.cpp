@@ -17,13 +17,15 @@ SingleTrackModel model(const std::string& tire) {
   return createVehicleModel(VehicleParams{}, t, t);
 }
 
-// Row 1 of eq 1: the front axle's wheel-direction speed equals V.
+// Row 1 of eq 1: the front axle's wheel-direction speed equals V. Relative to the size of its terms
+// (x_dot and y_dot carry 1/cos(delta), which rounding amplifies when the wheel passes 90 degrees).
 double constraintResidual(const SingleTrackModel& m, const Eigen::VectorXd& x) {
   Eigen::VectorXd x_dot(m.stateSize());
   m.derivative(x.data(), 0.0, x_dot.data());
   const double psi = x[kPsi], delta = x[kDelta], b = m.params().cgToFrontAxle();
-  return std::cos(psi + delta) * x_dot[kX] + std::sin(psi + delta) * x_dot[kY] + b * std::sin(delta) * x_dot[kPsi] -
-         m.params().speed;
+  const double size = std::fabs(x_dot[kX]) + std::fabs(x_dot[kY]) + b * std::fabs(x_dot[kPsi]) + m.params().speed;
+  return (std::cos(psi + delta) * x_dot[kX] + std::sin(psi + delta) * x_dot[kY] + b * std::sin(delta) * x_dot[kPsi] -
+          m.params().speed) / size;
 }
 
 TEST(SingleTrackModel, KinematicsSatisfyEq1AlongATrajectory) {
@@ -47,12 +49,15 @@ TEST(SingleTrackModel, KinematicsSatisfyEq1AlongATrajectory) {
       // Row 2 of eq 1: sigma1 is the lateral velocity of G in the body frame.
       Eigen::VectorXd x_dot(m.stateSize());
       m.derivative(x.data(), torque, x_dot.data());
+      const double size = std::fabs(x_dot[kX]) + std::fabs(x_dot[kY]) + std::fabs(x[kSigma1]);
       worst_sigma1 = std::max(worst_sigma1, std::fabs(-std::sin(x[kPsi]) * x_dot[kX] + std::cos(x[kPsi]) * x_dot[kY] -
-                                                      x[kSigma1]));
+                                                      x[kSigma1]) / size);
     }
-    // Eq 2 satisfies eq 1 identically; what remains is rounding on terms of size V = 15 m/s.
-    EXPECT_LT(worst, 1e-10);
-    EXPECT_LT(worst_sigma1, 1e-10);
+    // Eq 2 satisfies eq 1 identically; what remains is rounding, relative to the terms' size (the
+    // open-loop torque spins the wheel through 90 degrees, where x_dot and y_dot grow like 1/cos(delta)
+    // out of terms that cancel). Measured: at most 1.3e-12; a kinematic error would be O(1).
+    EXPECT_LT(worst, 1e-11);
+    EXPECT_LT(worst_sigma1, 1e-11);
     EXPECT_GT(std::fabs(x[kDelta] - 0.05), 1e-3);  // the trajectory went somewhere
   }
 }

@@ -20,6 +20,9 @@ struct ContactKinematics {
   T longitudinal_slip_speed{0.0};  ///< v_rx [m/s], Deur eq 2 (0 in free rolling)
   T lateral_slip_speed{0.0};       ///< v_ry [m/s] at the contact centre, Deur eq 3
   T yaw_rate{0.0};                 ///< yaw rate of the wheel plane [rad/s] (turn slip of the distributed model)
+  /// 1 / wheel_speed when the vehicle model has it anyway (it divides by the rear wheel speed for the
+  /// slip angle; the front's is constant): saves the lumped LuGre tire a division. 0 = not given.
+  T inv_wheel_speed{0.0};
 };
 
 template <typename T>

@@ -60,7 +60,8 @@ class LugreLumpedTire {
     // kappa (eq 39) and lambda (eq 53) at y = L / Z = L c0 / w.
     T kappa_y, lambda;
     if (toDouble(w) > 0.0) {
-      const auto f = pressure_.factors(T(L * c0y / w));
+      const auto f = pressure_.factors(
+          T(toDouble(k.inv_wheel_speed) != 0.0 ? L * c0y * k.inv_wheel_speed : L * c0y / w));
       kappa_y = kappa_constant_ > 0.0 ? T(kappa_constant_) : f.kappa;
       lambda = f.lambda;
     } else {  // standstill: no transport; the factors multiply w = 0

@@ -155,14 +155,18 @@ class SingleTrackModel {
     const T& inv_c = steer.inv_c;
     const T front_lateral = s1 + b * s2;  // lateral velocity of F in the body frame
     Contacts<T> out;
-    out.u = (V - front_lateral * s) * inv_c;
+    const T u_cos = V - front_lateral * s;  // u cos(delta)
+    out.u = u_cos * inv_c;
+    const T inv_u = steer.c / u_cos;  // the one division of the rear slip angle, kept for the rear tire
     const double aF = front_half_length_, aR = rear_half_length_;
     out.front.tan_slip_angle = -(front_lateral + aF * (s2 + s3)) * inv_c * inv_V + s * inv_c;
     out.front.wheel_speed = V;
+    out.front.inv_wheel_speed = inv_V;
     out.front.lateral_slip_speed = V * s * inv_c - front_lateral * inv_c;  // -(lateral velocity of F across the wheel)
     out.front.yaw_rate = s2 + s3;
-    out.rear.tan_slip_angle = -(s1 - (d - aR) * s2) / out.u;
+    out.rear.tan_slip_angle = -(s1 - (d - aR) * s2) * inv_u;
     out.rear.wheel_speed = out.u;
+    out.rear.inv_wheel_speed = inv_u;
     out.rear.lateral_slip_speed = -(s1 - d * s2);
     out.rear.yaw_rate = s2;
     return out;
