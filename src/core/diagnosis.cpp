@@ -107,6 +107,30 @@ double gapOf(const std::map<std::string, SubsystemScore>& nominal, const std::ma
   return combinedGap(scores);
 }
 
+/// Runs body(0) .. body(count - 1) on up to `threads` threads (each index once, in any order);
+/// `announce(i)`, if given, runs under a lock just before body(i) (progress messages).
+void parallelFor(std::size_t count, int threads, const std::function<void(std::size_t)>& body,
+                 const std::function<void(std::size_t)>& announce = nullptr) {
+  std::mutex mutex;
+  std::size_t next = 0;
+  auto worker = [&]() {
+    while (true) {
+      std::size_t index;
+      {
+        std::lock_guard<std::mutex> lock(mutex);
+        if (next >= count) return;
+        index = next++;
+        if (announce) announce(index);
+      }
+      body(index);
+    }
+  };
+  std::vector<std::thread> pool;
+  const std::size_t n = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(std::max(1, threads)), count));
+  for (std::size_t i = 0; i < n; ++i) pool.emplace_back(worker);
+  for (auto& t : pool) t.join();
+}
+
 /// The noise-only reference of each data set (same segments, noise drawn from `seed`), or empty with
 /// a note if the nominal closed loop cannot cover a log.
 std::vector<Dataset> noiseReferenceData(const SimConfig& nominal, const std::vector<Dataset>& data, unsigned seed,
@@ -133,25 +157,13 @@ std::map<std::string, double> noiseReferenceExcess(const SimConfig& nominal, con
   std::vector<std::map<std::string, SubsystemScore>> scores(realisations);
   std::vector<bool> ok(realisations, false);
   std::vector<std::vector<std::string>> draw_notes(realisations);
-  std::mutex mutex;
-  int next = 0;
-  auto worker = [&]() {
-    while (true) {
-      int k;
-      {
-        std::lock_guard<std::mutex> lock(mutex);
-        if (next >= realisations) return;
-        k = next++;
-      }
-      const std::vector<Dataset> reference = noiseReferenceData(nominal, data, 9001u + 1000u * k, &draw_notes[k]);
-      if (reference.empty()) continue;
-      scores[k] = evaluate(nominal, reference, allSubsystems(), options).scores;
-      ok[k] = true;
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 0; i < std::max(1, std::min(threads, realisations)); ++i) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  parallelFor(static_cast<std::size_t>(realisations), threads, [&](std::size_t k) {
+    const std::vector<Dataset> reference =
+        noiseReferenceData(nominal, data, 9001u + 1000u * static_cast<unsigned>(k), &draw_notes[k]);
+    if (reference.empty()) return;
+    scores[k] = evaluate(nominal, reference, allSubsystems(), options).scores;
+    ok[k] = true;
+  });
   std::map<std::string, double> sum;
   int used = 0;
   for (int k = 0; k < realisations; ++k) {
@@ -895,23 +907,10 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     }
   }
   std::vector<CandidateFit> fits(candidates.size());
-  std::mutex progress_mutex;
-  std::size_t next = 0;
-  auto worker = [&]() {
-    while (true) {
-      std::size_t index;
-      {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        if (next >= candidates.size()) return;
-        index = next++;
-        say("fitting " + candidates[index]->name);
-      }
-      fits[index] = fitCandidate(*candidates[index], nominal, train, held, nominal_train, nominal_held, options);
-    }
-  };
-  std::vector<std::thread> pool;
-  for (int i = 0; i < std::max(1, options.threads); ++i) pool.emplace_back(worker);
-  for (auto& th : pool) th.join();
+  parallelFor(
+      candidates.size(), options.threads,
+      [&](std::size_t i) { fits[i] = fitCandidate(*candidates[i], nominal, train, held, nominal_train, nominal_held, options); },
+      [&](std::size_t i) { say("fitting " + candidates[i]->name); });
 
   // A candidate can be the cause only if it changes the subsystem where the gap lies (a pure steering
   // effect leaves no chassis residual; no candidate touches the actuator subsystem).
