@@ -122,6 +122,30 @@ TEST(ModelExtensions, StiffColumnBehavesLikeARigidOneWithTheColumnInertiaAdded) 
   EXPECT_GT(std::fabs(r[kDelta]), 1e-4);
 }
 
+TEST(ModelExtensions, ProgressiveColumnTransmitsTheCubicSpringTorque) {
+  // Column at rest, twisted against the wheel, no command: J_c theta_c'' = -k t (1 + (t / a)^2).
+  SimConfig c = brushConfig();
+  c.steering.column_stiffness = 1500.0;
+  c.steering.column_damping = 15.0;
+  c.steering.column_inertia = 0.05;
+  const int column = createVehicleModel(c).steeringStateOffset();
+  for (const double twist : {0.01, 0.03, -0.06}) {
+    c.steering.column_stiffening_angle = 0.0;
+    const SingleTrackModel linear = createVehicleModel(c);
+    c.steering.column_stiffening_angle = 0.03;
+    const SingleTrackModel progressive = createVehicleModel(c);
+    Eigen::VectorXd x = progressive.initialState(InitialState{});
+    x[column] = x[kDelta] + twist;
+    Eigen::VectorXd d_lin(x.size()), d_prog(x.size());
+    linear.derivative(x.data(), 0.0, d_lin.data());
+    progressive.derivative(x.data(), 0.0, d_prog.data());
+    const double r = twist / 0.03;
+    EXPECT_NEAR(d_lin[column + 1], -1500.0 * twist / 0.05, 1e-9 * 1500.0 / 0.05);
+    // At the stiffening angle the secant stiffness is twice the linear one.
+    EXPECT_NEAR(d_prog[column + 1], -1500.0 * twist * (1.0 + r * r) / 0.05, 1e-9 * 1500.0 / 0.05);
+  }
+}
+
 TEST(ModelExtensions, TireRelaxationLagsTheForce) {
   // Relaxation length 0.5 m at V = 15 m/s: time constant 33.3 ms; the steady state is unchanged.
   TireParams p;

@@ -284,7 +284,14 @@ class SingleTrackModel {
     if (p.compliant()) {
       const T& column = x[next];
       const T& column_rate = x[next + 1];
-      transmitted = p.column_stiffness * (column - x[kDelta]) + p.column_damping * (column_rate - rate);
+      const T twist = column - x[kDelta];
+      T spring = p.column_stiffness * twist;
+      if (p.column_stiffening_angle > 0.0) {
+        // A progressive torsion bar: k twist (1 + (twist / angle)^2).
+        const T r = twist / p.column_stiffening_angle;
+        spring *= 1.0 + r * r;
+      }
+      transmitted = spring + p.column_damping * (column_rate - rate);
       x_dot[next] = column_rate;
       x_dot[next + 1] = (applied - transmitted) / p.column_inertia;
       next += 2;

@@ -34,6 +34,8 @@ struct SteeringParams {
   double column_stiffness = 0.0;    ///< k_c [N m/rad]; 0 = rigid column
   double column_damping = 0.0;      ///< c_c [N m s/rad]
   double column_inertia = 0.02;     ///< J_c [kg m^2]
+  double column_stiffening_angle = 0.0;  ///< twist [rad] at which a progressive column is twice as stiff
+                                        ///< (secant k (1 + (twist / angle)^2)); 0 = linear
 
   bool softSaturation() const { return saturation == "soft"; }
   bool hasFriction() const { return coulomb_friction > 0.0 || breakaway_friction > 0.0 || viscous_friction > 0.0; }
@@ -64,6 +66,8 @@ struct SteeringParams {
              "k_c, torsional stiffness between actuator and wheel; 0 = rigid");
     v.number(prefix + "column_damping", column_damping, "N m s/rad", Range::nonNegative(), "c_c, column damping");
     v.number(prefix + "column_inertia", column_inertia, "kg m^2", Range::positive(), "J_c, actuator-side inertia");
+    v.number(prefix + "column_stiffening_angle", column_stiffening_angle, "rad", Range::nonNegative(),
+             "progressive column: twist at which the secant stiffness doubles, k (1 + (twist / angle)^2); 0 = linear");
   }
 };
 
