@@ -18,11 +18,11 @@
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
 #include "lane_keeping/gap/candidate_effects.h"
+#include "lane_keeping/gap/closed_loop_replay.h"
 #include "lane_keeping/gap/gap_metrics.h"
 #include "lane_keeping/gap/log_signals.h"
 #include "lane_keeping/gap/noise_reference.h"
 #include "lane_keeping/gap/winner_selection.h"
-#include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {
 namespace {
@@ -218,6 +218,7 @@ struct CandidateFit {
   std::string note;
   std::vector<double> theta, sigma;
   bool at_bound = false;  ///< a fitted parameter is pinned at a bound of its range
+  std::string stability_note;  ///< set when the fit had to be held to a closed loop that stays bounded
   SimConfig corrected;
   double train_before = 0.0, train_after = 0.0;
   double heldout_before = 0.0, heldout_after = 0.0;
@@ -271,26 +272,56 @@ class CandidateObjective {
     return c;
   }
 
-  /// Residual vector for parameters theta (SI); false if the configuration is invalid.
+  /// Residual vector for parameters theta (SI); false if the configuration is invalid, or if it makes
+  /// the closed loop diverge on a log where stability is required.
   bool residuals(const std::vector<double>& theta, std::vector<double>* out) const {
     const SimConfig c = configFor(theta);
-    if (!c.problems().empty()) return false;
-    const bool reuse = subsystems_.count("chassis") == 0;
-    const Evaluation ev = evaluate(c, data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr);
-    *out = fitResiduals(ev);
+    if (!c.problems().empty() || divergence(c) > 0.0) return false;
+    replayResiduals(c, out);
     return true;
   }
 
+  /// Sum of squared residuals. Under a stability requirement a point whose closed loop diverges ranks
+  /// after every bounded one, and the later it diverges the better — so that a coordinate search
+  /// started in the unstable region finds its way out.
   double loss(const std::vector<double>& theta) const {
+    const SimConfig c = configFor(theta);
+    if (!c.problems().empty()) return std::numeric_limits<double>::infinity();
+    if (const double d = divergence(c); d > 0.0) return kUnstableLoss * (1.0 + d);
     std::vector<double> r;
-    if (!residuals(theta, &r)) return std::numeric_limits<double>::infinity();
+    replayResiduals(c, &r);
     return sumOfSquares(r);
   }
 
   const std::set<std::string>& subsystems() const { return subsystems_; }
   const CandidateEffect& effect() const { return effect_; }
 
+  /// The closed loop must stay bounded on these logs over these horizons.
+  struct StabilityRequirement {
+    const LogSignals* log;
+    double horizon;
+  };
+  void requireStability(std::vector<StabilityRequirement> requirements) { stable_on_ = std::move(requirements); }
+
  private:
+  static constexpr double kUnstableLoss = 1e100;
+
+  void replayResiduals(const SimConfig& c, std::vector<double>* out) const {
+    const bool reuse = subsystems_.count("chassis") == 0;
+    *out = fitResiduals(evaluate(c, data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr));
+  }
+
+  /// 0 if the closed loop of `c` stays bounded on every required log, else 1 - (time it took to
+  /// diverge) / horizon, in (0, 1].
+  double divergence(const SimConfig& c) const {
+    for (const StabilityRequirement& s : stable_on_) {
+      const LoopDivergence d = closedLoopDivergence(c, *s.log, kNaN, s.horizon);
+      if (d.diverged) return std::clamp(1.0 - d.time / s.horizon, 1e-6, 1.0);
+    }
+    return 0.0;
+  }
+
+  std::vector<StabilityRequirement> stable_on_;
   const CandidateEffect& effect_;
   const SimConfig& nominal_;
   const std::vector<Dataset>& data_;
@@ -356,10 +387,11 @@ double lineSearch(const CandidateObjective& objective, std::vector<double>& thet
 /// Robust low-dimensional fit: coordinate-wise grid + golden section over the whole bounds, then a
 /// second round in a narrowed range. (Gauss-Newton alone crawls here: stick-slip friction and
 /// saturations make the residuals far from linear in the parameters.)
-std::vector<double> coordinateFit(const CandidateObjective& objective) {
+std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta = {}) {
   const auto& params = objective.effect().params;
-  std::vector<double> theta;
-  for (const auto& p : params) theta.push_back(p.initial);
+  if (theta.empty()) {
+    for (const auto& p : params) theta.push_back(p.initial);
+  }
   double loss = objective.loss(theta);
   for (int round = 0; round < (params.size() > 1 ? 2 : 1); ++round) {
     for (std::size_t j = 0; j < params.size(); ++j) {
@@ -381,12 +413,66 @@ std::vector<double> coordinateFit(const CandidateObjective& objective) {
   return theta;
 }
 
+/// The logged runs stayed bounded, so a fitted effect under which the closed loop of the log diverges
+/// contradicts the log, however well it fits the open-loop replays (a column fitted with too little
+/// damping does: the steering replay hardly sees the damping, the actuator's PD loop does). If the
+/// fitted closed loop diverges on a training log where the nominal one does not, the fit is redone
+/// from there with the closed loop over that whole log required to stay bounded.
+std::vector<double> holdStable(CandidateObjective& objective, std::vector<double> theta, const std::vector<Dataset>& train,
+                               const SimConfig& nominal, std::string* note) {
+  std::vector<const LogSignals*> logs;
+  for (const Dataset& d : train) {
+    if (std::find(logs.begin(), logs.end(), d.log.get()) == logs.end()) logs.push_back(d.log.get());
+  }
+  std::vector<CandidateObjective::StabilityRequirement> requirements;
+  for (const LogSignals* log : logs) {
+    const double span = log->end() - log->start();
+    const LoopDivergence d = closedLoopDivergence(objective.configFor(theta), *log, kNaN, span);
+    if (!d.diverged || closedLoopDivergence(nominal, *log, kNaN, span).diverged) continue;
+    requirements.push_back({log, span});
+    if (!note->empty()) continue;
+    std::ostringstream os;
+    os << "the least-squares fit (";
+    for (std::size_t j = 0; j < theta.size(); ++j) {
+      os << (j ? ", " : "") << objective.effect().params[j].name << " " << formatNumber(theta[j]);
+    }
+    os << ") makes the closed loop diverge on " << log->log().source << " (" << d.message
+       << "); fitted again with the closed loop required to stay bounded";
+    *note = os.str();
+  }
+  if (requirements.empty()) return theta;
+  objective.requireStability(requirements);
+  // First move: the one parameter whose change alone best restores a bounded loop. (Sweeping the
+  // parameters in order would move the first however badly while the loop still diverges: a column's
+  // stiffness, searched at the fitted low damping, lands at its bound.)
+  const double start_loss = objective.loss(theta);
+  std::vector<double> best = theta;
+  double best_loss = start_loss;
+  for (std::size_t j = 0; j < theta.size(); ++j) {
+    std::vector<double> moved = theta;
+    const auto& p = objective.effect().params[j];
+    const double loss = lineSearch(objective, moved, j, p.lower, p.upper, 13, start_loss);
+    if (loss < best_loss) {
+      best_loss = loss;
+      best = moved;
+    }
+  }
+  theta = coordinateFit(objective, best);
+  for (const auto& r : requirements) {
+    if (closedLoopDivergence(objective.configFor(theta), *r.log, kNaN, r.horizon).diverged) {
+      *note += "; no bounded fit found: it still diverges on " + r.log->log().source;
+      break;
+    }
+  }
+  return theta;
+}
+
 CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& train,
                           const std::vector<Dataset>& heldout, const Evaluation& nominal_train,
                           const Evaluation& nominal_heldout, const DiagnosisOptions& options) {
   CandidateFit fit;
   fit.effect = &effect;
-  const CandidateObjective objective(effect, nominal, train, options.replay, nominal_train.sigma1);
+  CandidateObjective objective(effect, nominal, train, options.replay, nominal_train.sigma1);
   std::vector<double> theta;
   try {
     theta = coordinateFit(objective);
@@ -418,6 +504,7 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nomina
         if (objective.loss(polished) < objective.loss(theta)) theta = polished;
       }
     }
+    theta = holdStable(objective, theta, train, nominal, &fit.stability_note);
   } catch (const std::exception& e) {
     fit.note = std::string("fit failed: ") + e.what();
     return fit;
@@ -434,6 +521,8 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nomina
 
   // 1-sigma uncertainty from the Gauss-Newton covariance s^2 (J^T J)^-1 at the optimum (central
   // differences in SI units). Residuals of neighbouring samples are correlated, so this is a lower bound.
+  // (The local curvature of the least-squares loss, also at a fit held to a stable closed loop.)
+  objective.requireStability({});
   std::vector<double> r_opt;
   if (objective.residuals(theta, &r_opt)) {
     const std::size_t n = r_opt.size(), p = theta.size();
@@ -749,80 +838,6 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, c
   return where;
 }
 
-// ================================================================================================
-// How far: closed-loop replay
-// ================================================================================================
-
-struct ClosedLoopReplay {
-  double gap = kNaN;
-  std::vector<double> t, y, yaw_rate, delta;
-  std::string note;
-};
-
-/// Simulates the closed loop from the log's first sample with `config` and compares y, yaw rate and
-/// delta: the gap is the RMS over those outputs of RMS(residual) / RMS(measured).
-ClosedLoopReplay closedLoopReplay(SimConfig config, const LogSignals& log, const std::vector<std::pair<double, double>>& sigma1) {
-  ClosedLoopReplay out;
-  const double t0 = log.start();
-  InitialState& init = config.simulation.initial;
-  init.x = log.at(LogSignals::kX, t0);
-  init.y = log.at(LogSignals::kY, t0);
-  init.psi = log.at(LogSignals::kPsi, t0);
-  init.delta = log.at(LogSignals::kDelta, t0);
-  init.sigma2 = log.at(LogSignals::kYawRate, t0);
-  init.sigma3 = log.at(LogSignals::kDeltaRate, t0);
-  init.sigma1 = sigma1.empty() ? log.at(LogSignals::kSigma1, t0) : sigma1.front().second;
-  config.simulation.duration = log.end() - t0;
-  config.simulation.log_rate = std::min(1000.0, 1.0 / std::max(1e-4, log.log().medianStep()));
-  RunResult run;
-  try {
-    run = ClosedLoop(config).run();
-  } catch (const std::exception& e) {
-    out.note = std::string("closed-loop replay failed: ") + e.what();
-    return out;
-  }
-  if (run.diverged()) out.note = "closed-loop replay " + run.message;
-  std::vector<double> res_y, res_r, res_d, all_y, all_r, all_d;
-  std::size_t k = 0;
-  for (std::size_t i = 0; i < log.times().size(); ++i) {
-    const double ts = log.times()[i] - t0;
-    while (k + 1 < run.rows.size() && run.rows[k + 1].t <= ts) ++k;
-    if (run.rows.empty() || ts > run.end_time) break;
-    const LogRow& a = run.rows[k];
-    const LogRow& b = run.rows[std::min(k + 1, run.rows.size() - 1)];
-    const double w = b.t > a.t ? std::clamp((ts - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
-    const double y = a.state.y + w * (b.state.y - a.state.y);
-    const double r = a.state.sigma2 + w * (b.state.sigma2 - a.state.sigma2);
-    const double d = a.state.delta + w * (b.state.delta - a.state.delta);
-    out.t.push_back(log.times()[i]);
-    out.y.push_back(y);
-    out.yaw_rate.push_back(r);
-    out.delta.push_back(d);
-    res_y.push_back(log.samples(LogSignals::kY)[i] - y);
-    res_r.push_back(log.samples(LogSignals::kYawRate)[i] - r);
-    res_d.push_back(log.samples(LogSignals::kDelta)[i] - d);
-  }
-  auto rms = [](const std::vector<double>& v) {
-    double s = 0.0;
-    for (double x : v) s += x * x;
-    return v.empty() ? 0.0 : std::sqrt(s / v.size());
-  };
-  auto spread = [](const std::vector<double>& v) {
-    double m = 0.0;
-    for (double x : v) m += x;
-    m /= std::max<std::size_t>(1, v.size());
-    double s = 0.0;
-    for (double x : v) s += (x - m) * (x - m);
-    return std::max(1e-9, std::sqrt(s / std::max<std::size_t>(1, v.size())));
-  };
-  if (res_y.empty()) return out;
-  const double gy = rms(res_y) / spread(log.samples(LogSignals::kY));
-  const double gr = rms(res_r) / spread(log.samples(LogSignals::kYawRate));
-  const double gd = rms(res_d) / spread(log.samples(LogSignals::kDelta));
-  out.gap = std::sqrt((gy * gy + gr * gr + gd * gd) / 3.0);
-  return out;
-}
-
 std::vector<Dataset> wholeLogs(const std::vector<std::shared_ptr<const LogSignals>>& logs, double margin) {
   std::vector<Dataset> out;
   for (const auto& log : logs) out.push_back({log, {{log->start() + margin, log->end() + 1e-9}}});
@@ -944,6 +959,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     }
     r.score = fit.ok ? fit.evidence : 0.0;
     if (fit.ok && fit.at_bound) report.notes.push_back(fit.effect->name + ": a fitted parameter is pinned at a bound of its range");
+    if (fit.ok && !fit.stability_note.empty()) report.notes.push_back(fit.effect->name + ": " + fit.stability_note);
     report.ranking.push_back(r);
   }
   std::sort(report.ranking.begin(), report.ranking.end(),
@@ -1029,7 +1045,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     int counted = 0;
     for (std::size_t i = 0; i < cl_logs.size(); ++i) {
       const Evaluation chassis = evaluate(nominal, wholeLogs({cl_logs[i]}, 0.0), {"chassis"}, options.replay);
-      const auto s1 = chassis.sigma1.empty() ? std::vector<std::pair<double, double>>{} : chassis.sigma1[0];
+      const double s1 = chassis.sigma1.empty() || chassis.sigma1[0].empty() ? kNaN : chassis.sigma1[0].front().second;
       const ClosedLoopReplay b = closedLoopReplay(nominal, *cl_logs[i], s1);
       const ClosedLoopReplay a = winner ? closedLoopReplay(winner->corrected, *cl_logs[i], s1) : b;
       if (!b.note.empty()) report.notes.push_back("nominal " + b.note);
