@@ -102,9 +102,9 @@ std::vector<std::string> truthOverlay(const std::string& effect, bool large, dou
             "tracker.pose_bias_variation=0.3", "tracker.pose_bias_wavelength=250"};
   }
   if (effect == "steering_compliance") {
-    // A heavier column (J_c = 0.05) than the candidate's default (0.02); damped enough for the PD loop.
+    // A progressive torsion bar, twice as stiff (secant) at 0.03 rad of twist: the candidate's is linear.
     return {"steering.column_stiffness=" + pick(4000, 1500), "steering.column_damping=15",
-            "steering.column_inertia=0.05"};
+            "steering.column_inertia=0.05", "steering.column_stiffening_angle=0.03"};
   }
   if (effect == "inertia") {
     // Load in the boot: more mass and yaw inertia and the centre of gravity moved back (the candidate

@@ -94,12 +94,17 @@ std::vector<CandidateEffect> buildCandidates() {
                   }});
   list.push_back({"steering_compliance",
                   "a torsionally compliant steering column between actuator and wheel",
-                  {{"stiffness", "N m/rad", 5000.0, 100.0, 1e6, true}, {"damping", "N m s/rad", 5.0, 0.1, 500.0, true}},
+                  // The column's inertia is fitted too: a nominal with a rigid column has no use for
+                  // (and no knowledge of) it, and a wrong one leaves a resonance the other two cannot place.
+                  {{"stiffness", "N m/rad", 5000.0, 100.0, 1e6, true},
+                   {"damping", "N m s/rad", 5.0, 0.1, 100.0, true},
+                   {"inertia", "kg m^2", 0.02, 0.005, 0.5, true}},
                   {"steering"},
                   false,
                   [](const std::vector<double>& p, SimConfig& c) {
                     c.steering.column_stiffness = p[0];
                     c.steering.column_damping = p[1];
+                    c.steering.column_inertia = p[2];
                   }});
   list.push_back({"inertia",
                   "the car's yaw inertia and mass differ",

@@ -13,7 +13,8 @@
 ///   cornering_stiffness  front_scale, rear_scale (1)             tire.{front,rear}.lateral_stiffness (x scale)
 ///   lateral_disturbance  force (N), moment (N m)                 disturbance.lateral_force, .yaw_moment
 ///   pose_bias            y (m), psi (rad)                        tracker.pose_bias_y, .pose_bias_psi (+)
-///   steering_compliance  stiffness (N m/rad), damping (N m s/rad) steering.column_stiffness, .column_damping
+///   steering_compliance  stiffness (N m/rad), damping (N m s/rad), steering.column_stiffness, .column_damping,
+///                        inertia (kg m^2)                          .column_inertia
 ///   inertia              yaw_scale, mass_scale (1)               vehicle.yaw_inertia, vehicle.mass (x scale)
 #include <functional>
 #include <map>
