@@ -164,18 +164,18 @@ std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre) {
   return cases;
 }
 
-GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise, double log_rate) {
-  const std::vector<std::string>& overlay = c.truth_overlay;
+SimConfig benchmarkTruth(const BenchmarkCase& c) {
+  // Apply key=value assignments through the same loader the tools use.
   FlatParams flat;
-  SimConfig truth = benchmarkNominal(c.manoeuvre);
-  {
-    // Apply key=value assignments through the same loader the tools use.
-    std::ostringstream yaml;
-    truth.print(yaml);
-    flat.overlayText(yaml.str(), "benchmark nominal");
-    for (const auto& assignment : overlay) flat.overlayAssignment(assignment);
-    truth = simConfigFromFlat(flat);
-  }
+  std::ostringstream yaml;
+  benchmarkNominal(c.manoeuvre).print(yaml);
+  flat.overlayText(yaml.str(), "benchmark nominal");
+  for (const auto& assignment : c.truth_overlay) flat.overlayAssignment(assignment);
+  return simConfigFromFlat(flat);
+}
+
+GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise, double log_rate) {
+  SimConfig truth = benchmarkTruth(c);
   truth.simulation.log_rate = log_rate;
   const RunResult run = ClosedLoop(truth).run();
   if (run.diverged()) throw LaneKeepingError("benchmark case " + c.id + ": the truth run " + run.message);

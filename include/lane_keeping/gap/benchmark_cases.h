@@ -38,6 +38,8 @@ SimConfig benchmarkNominal(const std::string& manoeuvre);
 /// All cases: 11 effects x 2 magnitudes x 2 manoeuvres, `none_per_manoeuvre` no-effect logs per
 /// manoeuvre, and 3 out-of-list effects x 2 magnitudes x 2 manoeuvres.
 std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre = 6);
+/// The truth configuration of a case: its manoeuvre's nominal with the case's overlay applied.
+SimConfig benchmarkTruth(const BenchmarkCase& c);
 /// Simulates the truth of a case and returns its noisy log (throws if the truth run diverges).
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise = {}, double log_rate = 500.0);
 /// Adds seeded Gaussian noise to every measured column.
