@@ -4,20 +4,37 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/control/path_tracker.h"
 #include "lane_keeping/sim/model_factory.h"
 #include "lane_keeping/sim/rk4.h"
+#include "lane_keeping/tire/tire.h"
 
 namespace lane_keeping {
 namespace {
 
 using C = LogSignals::Channel;
 
-/// [s] of logged motion the steering replay runs the front tire's own equations over before each
-/// shooting interval (several of its relaxation times at the benchmark's 15 m/s).
+/// [s] of logged motion the steering and chassis replays run the tires' own equations over before
+/// each shooting interval (several of their relaxation times at the benchmark's 15 m/s).
 constexpr double kTireLeadIn = 0.1;
+
+/// Largest RK4 step that resolves a tire's fastest dynamics at `speed`: its relaxation lag
+/// (relaxation length / V), the lumped LuGre transport (~ a / V) or, for the distributed tread, the
+/// transport across one bristle spacing (L / (N - 1) / V: 0.34 ms at 40 bristles and 15 m/s; the
+/// replays' 2-4 ms steps made a distributed tire blow up).
+double tireStep(const Tire& tire, double speed) {
+  double step = std::numeric_limits<double>::infinity();
+  if (tire.relaxationLength() > 0.0) step = std::min(step, 0.5 * tire.relaxationLength() / speed);
+  if (const auto* distributed = std::get_if<LugreDistributedTire>(&tire.model())) {
+    step = std::min(step, distributed->coefficients().contact_length / (distributed->bristles() - 1) / speed);
+  } else if (tire.stateSize() > 0 && tire.name() != "brush" && tire.name() != "magic_formula") {
+    step = std::min(step, 0.5 * tire.contactHalfLength() / speed);
+  }
+  return step;
+}
 
 /// Twist of a column transmitting `torque` at rest: torque / k, or for a progressive column the root
 /// of k twist (1 + (twist / angle)^2) = torque (monotone cubic; Newton from the linear twist, which
@@ -291,15 +308,10 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
 
   ReplayTrace trace = makeTrace("delta", log.samples(C::kDelta));
   Rk4 rk4(n);
-  // Step of the tire's lead-in (fast tire dynamics: relaxation, LuGre transport ~ V / L).
-  double tire_step = options.steering_step;
-  if (model.frontTire().relaxationLength() > 0.0) {
-    tire_step = std::min(tire_step, 0.5 * model.frontTire().relaxationLength() / config.vehicle.speed);
-  }
-  tire_step = std::min(tire_step, 0.5 * model.frontTire().contactHalfLength() / config.vehicle.speed);
+  const double tire_step = std::min(options.steering_step, tireStep(model.frontTire(), config.vehicle.speed));
   const auto& times = log.times();
   // Stiff steering systems need a shorter step: RK4 is stable up to ~2.8 / (fastest rate).
-  double step = options.steering_step;
+  double step = tire_step;
   const SteeringParams& sp = model.steering();
   if (sp.compliant()) {
     // Column and wheel as two inertias on a spring-damper: the fastest mode is bounded by the
@@ -461,13 +473,8 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   Eigen::VectorXd q_dot(n);
   const auto& times = log.times();
   // Fast tire dynamics (relaxation, LuGre transport ~ kappa V / L) need a shorter step.
-  double step = options.chassis_step;
-  for (const Tire* tire : {&model.frontTire(), &model.rearTire()}) {
-    if (tire->relaxationLength() > 0.0) step = std::min(step, 0.5 * tire->relaxationLength() / config.vehicle.speed);
-    if (tire->stateSize() > 0 && tire->name() != "brush" && tire->name() != "magic_formula") {
-      step = std::min(step, 0.5 * tire->contactHalfLength() / config.vehicle.speed);
-    }
-  }
+  const double step = std::min({options.chassis_step, tireStep(model.frontTire(), config.vehicle.speed),
+                                 tireStep(model.rearTire(), config.vehicle.speed)});
   for (const TimeSegment& interval : shootingIntervals(segments, options.chassis_horizon)) {
     // The chassis is slow (a few Hz): compare at most every chassis_compare_period seconds.
     std::vector<std::size_t> samples;
@@ -482,15 +489,42 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     q0[2] = log.at(C::kPsi, t0);
     q0[3] = log.at(C::kSigma1, t0);
     q0[4] = log.at(C::kYawRate, t0);
-    assemble(t0, q0);
     if (front_n + rear_n > 0) {
+      // The tires' states at t0 from the logged motion before it (as in the steering replay): settled
+      // at t0 - lead, then their own equations driven by the logged steering, yaw rate and sigma1.
+      const double ta = std::max(log.start(), t0 - kTireLeadIn);
+      Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
+      auto logged = [&](double t) {
+        motion[3] = log.at(C::kSigma1, t);
+        motion[4] = log.at(C::kYawRate, t);
+        assemble(t, motion);
+      };
+      logged(ta);
       const auto c = model.contacts(full.data(), SingleTrackModel::Trig<double>(full[kDelta]));
       std::vector<double> settled(std::max(front_n, rear_n));
+      Eigen::VectorXd z(front_n + rear_n);
       model.frontTire().steadyStateVector(c.front, settled.data());
-      for (int i = 0; i < front_n; ++i) q0[5 + i] = settled[i];
+      for (int i = 0; i < front_n; ++i) z[i] = settled[i];
       model.rearTire().steadyStateVector(c.rear, settled.data());
-      for (int i = 0; i < rear_n; ++i) q0[5 + front_n + i] = settled[i];
+      for (int i = 0; i < rear_n; ++i) z[front_n + i] = settled[i];
+      if (t0 > ta) {
+        auto tires = [&](double t, const Eigen::VectorXd& state, Eigen::VectorXd& state_dot) {
+          logged(t);
+          for (int i = 0; i < front_n; ++i) full[front0 + i] = state[i];
+          for (int i = 0; i < rear_n; ++i) full[rear0 + i] = state[front_n + i];
+          const SingleTrackModel::Trig<double> steer(full[kDelta]);
+          const auto contacts = model.contacts(full.data(), steer);
+          model.frontTire().evaluate(contacts.front, full.data() + front0, full_dot.data() + front0);
+          model.rearTire().evaluate(contacts.rear, full.data() + rear0, full_dot.data() + rear0);
+          for (int i = 0; i < front_n; ++i) state_dot[i] = full_dot[front0 + i];
+          for (int i = 0; i < rear_n; ++i) state_dot[front_n + i] = full_dot[rear0 + i];
+        };
+        Rk4 tire_rk4(front_n + rear_n);
+        integrate(tires, ta, t0, step, z, tire_rk4);
+      }
+      for (int i = 0; i < front_n + rear_n; ++i) q0[5 + i] = z[i];
     }
+    assemble(t0, q0);
     const Eigen::Index rows = static_cast<Eigen::Index>(samples.size());
     Eigen::MatrixXd measured(rows, outputs_n);
     for (Eigen::Index k = 0; k < rows; ++k) {
