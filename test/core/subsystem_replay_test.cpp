@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <string>
 
 #include "lane_keeping/gap/benchmark_cases.h"
 #include "lane_keeping/gap/gap_metrics.h"
@@ -14,6 +16,19 @@
 namespace lane_keeping {
 namespace {
 
+const SensorNoise kNoNoise{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+
+/// A benchmark case by id, shortened to `duration` seconds.
+BenchmarkCase shortCase(const std::string& id, double duration) {
+  BenchmarkCase c;
+  for (const auto& candidate : benchmarkCases()) {
+    if (candidate.id == id) c = candidate;
+  }
+  if (c.id.empty()) throw std::runtime_error("no benchmark case " + id);
+  c.truth_overlay.push_back("simulation.duration=" + std::to_string(duration));
+  return c;
+}
+
 /// RMS of the normalised residual of the replay's delta trace, over all shooting intervals.
 double steeringMismatch(const std::vector<std::string>& column) {
   BenchmarkCase c;
@@ -21,8 +36,7 @@ double steeringMismatch(const std::vector<std::string>& column) {
   c.manoeuvre = "lane_change";
   c.truth_overlay = column;
   c.truth_overlay.push_back("simulation.duration=8");
-  const SensorNoise none{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  const LogSignals log(generateBenchmarkLog(c, none, 500.0));
+  const LogSignals log(generateBenchmarkLog(c, kNoNoise, 500.0));
   const SimConfig config = benchmarkTruth(c);
   const SubsystemReplay replay = replaySteering(config, log, {{0.6, 8.0}});
   EXPECT_EQ(replay.diverged_intervals, 0);
@@ -58,14 +72,8 @@ TEST(Replay, DistributedTreadWithCarcassLagReproducesTheLog) {
   // relaxation), replayed with itself: the chassis and steering replays step below the transport time
   // across one bristle spacing (0.34 ms). With the replays' usual 2-3 ms steps they blew up
   // (normalised mismatch 79 and 40).
-  BenchmarkCase c;
-  for (const auto& candidate : benchmarkCases()) {
-    if (candidate.id == "tire_lag-large-lane_change") c = candidate;
-  }
-  ASSERT_FALSE(c.id.empty());
-  c.truth_overlay.push_back("simulation.duration=8");
-  const SensorNoise none{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  const LogSignals log(generateBenchmarkLog(c, none, 500.0));
+  const BenchmarkCase c = shortCase("tire_lag-large-lane_change", 8.0);
+  const LogSignals log(generateBenchmarkLog(c, kNoNoise, 500.0));
   const SimConfig truth = benchmarkTruth(c);
   ASSERT_EQ(truth.tire_front.model, "lugre_distributed");
   const std::vector<TimeSegment> segments{{0.6, 8.0}};
@@ -81,14 +89,8 @@ TEST(Replay, FitsALoggedTorqueDelayAtItsTrueValue) {
   // Each interval's front tire state comes from its own equations over the logged motion before the
   // interval; settled at the interval start instead, the replay fitted best 0.13 ms short (2.30 ms),
   // with a floor of 1.2e-3 at the true delay.
-  BenchmarkCase c;
-  for (const auto& candidate : benchmarkCases()) {
-    if (candidate.id == "actuation_delay-large-lane_change") c = candidate;
-  }
-  ASSERT_FALSE(c.id.empty());
-  c.truth_overlay.push_back("simulation.duration=10");
-  const SensorNoise none{0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
-  const LogSignals log(generateBenchmarkLog(c, none, 500.0));
+  const BenchmarkCase c = shortCase("actuation_delay-large-lane_change", 10.0);
+  const LogSignals log(generateBenchmarkLog(c, kNoNoise, 500.0));
   const SimConfig truth = benchmarkTruth(c);
   ASSERT_NEAR(truth.delays.torque_to_plant, 2.43e-3, 1e-9);
   const std::vector<TimeSegment> segments{{0.6, 10.0}};
