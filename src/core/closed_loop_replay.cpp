@@ -77,12 +77,14 @@ ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log
   return out;
 }
 
-LoopDivergence closedLoopDivergence(const SimConfig& config, const LogSignals& log, double sigma1_0, double horizon) {
+LoopDivergence closedLoopDivergence(const SimConfig& config, const LogSignals& log, double sigma1_0, double horizon,
+                                    double max_torque) {
   LoopDivergence out;
   RunResult run;
+  const bool torque_bound = std::isfinite(max_torque);
   try {
-    // Logged sparsely: only the verdict of the divergence monitor is used.
-    run = ClosedLoop(closedLoopConfigOnLog(config, log, sigma1_0, horizon, 10.0)).run();
+    // Logged sparsely: the divergence monitor's verdict, and the torque if it is bounded.
+    run = ClosedLoop(closedLoopConfigOnLog(config, log, sigma1_0, horizon, torque_bound ? 200.0 : 10.0)).run();
   } catch (const std::exception& e) {
     out.diverged = true;
     out.time = 0.0;
@@ -93,6 +95,16 @@ LoopDivergence closedLoopDivergence(const SimConfig& config, const LogSignals& l
     out.diverged = true;
     out.time = run.end_time;
     out.message = run.message;
+    return out;
+  }
+  for (const LogRow& row : run.rows) {
+    if (torque_bound && !(std::fabs(row.torque_command) <= max_torque)) {
+      out.diverged = true;
+      out.time = row.t;
+      out.message = "steering torque " + std::to_string(row.torque_command) + " N m at t = " + std::to_string(row.t) +
+                    " s beyond +-" + std::to_string(max_torque) + " N m";
+      break;
+    }
   }
   return out;
 }

@@ -245,6 +245,13 @@ double evidenceOf(const std::map<std::string, SubsystemScore>& before, const std
   return evidence;
 }
 
+/// `config` with its divergence monitor's steering-angle limit lowered to `bound`.
+SimConfig withSteeringBound(SimConfig config, double bound) {
+  double& limit = config.simulation.divergence.max_steering_angle;
+  limit = std::min(limit, bound);
+  return config;
+}
+
 /// The loss of one candidate as a function of its (transformed) parameters.
 class CandidateObjective {
  public:
@@ -296,10 +303,13 @@ class CandidateObjective {
   const std::set<std::string>& subsystems() const { return subsystems_; }
   const CandidateEffect& effect() const { return effect_; }
 
-  /// The closed loop must stay bounded on these logs over these horizons.
+  /// The closed loop must stay bounded on these logs over these horizons, its steering angle within
+  /// `max_steering_angle` and its torque command within `max_torque`.
   struct StabilityRequirement {
     const LogSignals* log;
     double horizon;
+    double max_steering_angle;
+    double max_torque;
   };
   void requireStability(std::vector<StabilityRequirement> requirements) { stable_on_ = std::move(requirements); }
 
@@ -315,7 +325,8 @@ class CandidateObjective {
   /// diverge) / horizon, in (0, 1].
   double divergence(const SimConfig& c) const {
     for (const StabilityRequirement& s : stable_on_) {
-      const LoopDivergence d = closedLoopDivergence(c, *s.log, kNaN, s.horizon);
+      const LoopDivergence d =
+          closedLoopDivergence(withSteeringBound(c, s.max_steering_angle), *s.log, kNaN, s.horizon, s.max_torque);
       if (d.diverged) return std::clamp(1.0 - d.time / s.horizon, 1e-6, 1.0);
     }
     return 0.0;
@@ -417,7 +428,11 @@ std::vector<double> coordinateFit(const CandidateObjective& objective, std::vect
 /// contradicts the log, however well it fits the open-loop replays (a column fitted with too little
 /// damping does: the steering replay hardly sees the damping, the actuator's PD loop does). If the
 /// fitted closed loop diverges on a training log where the nominal one does not, the fit is redone
-/// from there with the closed loop over that whole log required to stay bounded.
+/// from there with the closed loop over that whole log required to stay bounded. Bounded means within
+/// the simulator's divergence limits, with the steering angle within 1.5 times the logged range
+/// (+ 0.02 rad) and the torque command within twice the logged range (+ 5 N m): a column fitted at the
+/// edge of stability kept a 69 Hz oscillation that grew at 0.2 1/s to 0.93 rad and 40 kN m within the
+/// log's 30 s, under the monitor's 1.2 rad; one at 0.05 1/s reached 480 N m (logged: 35 N m).
 std::vector<double> holdStable(CandidateObjective& objective, std::vector<double> theta, const std::vector<Dataset>& train,
                                const SimConfig& nominal, std::string* note) {
   std::vector<const LogSignals*> logs;
@@ -427,9 +442,14 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
   std::vector<CandidateObjective::StabilityRequirement> requirements;
   for (const LogSignals* log : logs) {
     const double span = log->end() - log->start();
-    const LoopDivergence d = closedLoopDivergence(objective.configFor(theta), *log, kNaN, span);
-    if (!d.diverged || closedLoopDivergence(nominal, *log, kNaN, span).diverged) continue;
-    requirements.push_back({log, span});
+    double logged_angle = 0.0, logged_torque = 0.0;
+    for (double delta : log->samples(LogSignals::kDelta)) logged_angle = std::max(logged_angle, std::fabs(delta));
+    for (double torque : log->samples(LogSignals::kTorque)) logged_torque = std::max(logged_torque, std::fabs(torque));
+    const double angle = 1.5 * logged_angle + 0.02, torque = 2.0 * logged_torque + 5.0;
+    const LoopDivergence d =
+        closedLoopDivergence(withSteeringBound(objective.configFor(theta), angle), *log, kNaN, span, torque);
+    if (!d.diverged || closedLoopDivergence(withSteeringBound(nominal, angle), *log, kNaN, span, torque).diverged) continue;
+    requirements.push_back({log, span, angle, torque});
     if (!note->empty()) continue;
     std::ostringstream os;
     os << "the least-squares fit (";
@@ -459,7 +479,9 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
   }
   theta = coordinateFit(objective, best);
   for (const auto& r : requirements) {
-    if (closedLoopDivergence(objective.configFor(theta), *r.log, kNaN, r.horizon).diverged) {
+    if (closedLoopDivergence(withSteeringBound(objective.configFor(theta), r.max_steering_angle), *r.log, kNaN, r.horizon,
+                             r.max_torque)
+            .diverged) {
       *note += "; no bounded fit found: it still diverges on " + r.log->log().source;
       break;
     }

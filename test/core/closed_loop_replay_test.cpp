@@ -64,6 +64,21 @@ TEST(ClosedLoopReplay, TellsADivergingConfigurationFromABoundedOne) {
   EXPECT_FALSE(closedLoopDivergence(column, log, kNaN, 0.02).diverged);
 }
 
+TEST(ClosedLoopReplay, ATorqueBoundCountsAsDivergence) {
+  // The diagnosis bounds the torque of a fitted loop by the logged range: a column at the edge of
+  // stability can oscillate at its 69 Hz mode for many seconds under the monitor's 1.2 rad while its
+  // torque command reaches hundreds of N m.
+  const LogSignals log = nominalLog();
+  double logged = 0.0;
+  for (double m : log.samples(LogSignals::kTorque)) logged = std::max(logged, std::fabs(m));
+  ASSERT_GT(logged, 10.0);
+  EXPECT_FALSE(closedLoopDivergence(nominal(), log, kNaN, 10.0, 1.2 * logged).diverged);
+  const LoopDivergence d = closedLoopDivergence(nominal(), log, kNaN, 10.0, 0.5 * logged);
+  EXPECT_TRUE(d.diverged);
+  EXPECT_GT(d.time, 0.0);
+  EXPECT_NE(d.message.find("steering torque"), std::string::npos) << d.message;
+}
+
 TEST(ClosedLoopReplay, AConfigurationThatCannotRunCountsAsDivergedAtTheStart) {
   const LogSignals log = nominalLog();
   SimConfig bad = nominal();

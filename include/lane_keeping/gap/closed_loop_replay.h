@@ -34,7 +34,8 @@ struct LoopDivergence {
 
 /// Runs the closed loop of `config` on the log for `horizon` seconds (at most the log's span) and
 /// reports whether it diverged (DivergenceMonitor's limits; an invalid or unschedulable configuration
-/// counts as diverged at t = 0).
-LoopDivergence closedLoopDivergence(const SimConfig& config, const LogSignals& log, double sigma1_0, double horizon);
+/// counts as diverged at t = 0) or its steering-torque command left +-`max_torque` (checked at 200 Hz).
+LoopDivergence closedLoopDivergence(const SimConfig& config, const LogSignals& log, double sigma1_0, double horizon,
+                                    double max_torque = std::numeric_limits<double>::infinity());
 
 }  // namespace lane_keeping
