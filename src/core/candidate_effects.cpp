@@ -17,7 +17,7 @@ std::vector<CandidateEffect> buildCandidates() {
   std::vector<CandidateEffect> list;
   list.push_back({"tire_lag",
                   "the tires build up force over a relaxation length (first-order lag)",
-                  {{"relaxation_length", "m", 0.3, 0.005, 5.0, true}},
+                  {{"relaxation_length", "m", 0.3, 0.05, 5.0, true}},
                   {"chassis", "steering"},
                   false,
                   [](const std::vector<double>& p, SimConfig& c) {
@@ -98,7 +98,7 @@ std::vector<CandidateEffect> buildCandidates() {
                   // (and no knowledge of) it, and a wrong one leaves a resonance the other two cannot place.
                   {{"stiffness", "N m/rad", 5000.0, 100.0, 1e6, true},
                    {"damping", "N m s/rad", 5.0, 0.1, 100.0, true},
-                   {"inertia", "kg m^2", 0.02, 0.005, 0.5, true}},
+                   {"inertia", "kg m^2", 0.02, 0.01, 0.5, true}},
                   {"steering"},
                   false,
                   [](const std::vector<double>& p, SimConfig& c) {
