@@ -1,11 +1,14 @@
 // Benchmark of the gap diagnosis (issue #5): wall time to diagnose a 60 s log sampled at 100 Hz and at
 // 1 kHz with all eleven candidates (held-out blocks, closed-loop replay included), on the threads given.
 // The logs are generated like the withheld-effect benchmark (steering friction hidden, sensor noise).
-//   lk_bench_gap [--threads N] [--duration S]
+//   lk_bench_gap [--threads N] [--duration S] [--rate HZ] [--effects a,b,...]
+// (--rate: one log rate instead of both; --effects: fit only these candidates, to time one of them.)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <sstream>
 #include <string>
+#include <vector>
 
 #include "lane_keeping/gap/benchmark_cases.h"
 #include "lane_keeping/gap/diagnosis.h"
@@ -15,14 +18,22 @@ using namespace lane_keeping;
 int main(int argc, char** argv) {
   int threads = 2;
   double duration = 60.0;
+  std::vector<double> rates{100.0, 1000.0};
+  std::vector<std::string> effects;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string arg = argv[i];
     if (arg == "--threads") threads = std::atoi(argv[i + 1]);
     if (arg == "--duration") duration = std::atof(argv[i + 1]);
+    if (arg == "--rate") rates = {std::atof(argv[i + 1])};
+    if (arg == "--effects") {
+      std::stringstream list(argv[i + 1]);
+      for (std::string name; std::getline(list, name, ',');) effects.push_back(name);
+    }
   }
-  std::printf("lane_keeping gap diagnosis benchmark: %g s log, all 11 candidates, %d thread(s)\n\n", duration, threads);
+  std::printf("lane_keeping gap diagnosis benchmark: %g s log, %s, %d thread(s)\n\n", duration,
+              effects.empty() ? "all 11 candidates" : "selected candidates", threads);
   std::printf("%-10s %10s %14s %22s\n", "log rate", "rows", "wall time", "verdict");
-  for (const double rate : {100.0, 1000.0}) {
+  for (const double rate : rates) {
     BenchmarkCase c;
     for (const auto& candidate : benchmarkCases()) {
       if (candidate.id == "steering_friction-large-lane_change") c = candidate;
@@ -33,10 +44,15 @@ int main(int argc, char** argv) {
     nominal.simulation.duration = duration;
     DiagnosisOptions options;
     options.threads = threads;
+    options.effects = effects;
     const auto start = std::chrono::steady_clock::now();
     const GapReport report = diagnoseGap(nominal, {log}, {}, options);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%7.0f Hz %10zu %12.1f s %22s\n", rate, log.size(), wall, report.verdict.effect.c_str());
+    std::printf("           stages:");
+    for (const auto& [stage, seconds] : report.wall_seconds) std::printf(" %s %.1f s;", stage.c_str(), seconds);
+    std::printf("\n");
+    for (const auto& note : report.notes) std::printf("           note: %s\n", note.c_str());
     std::fflush(stdout);
   }
   return 0;

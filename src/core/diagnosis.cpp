@@ -1,6 +1,7 @@
 #include "lane_keeping/gap/diagnosis.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <cmath>
@@ -212,13 +213,26 @@ double sumOfSquares(const std::vector<double>& r) {
 // Candidate fitting
 // ================================================================================================
 
+/// The closed loop of a fit must stay bounded on `log` over `horizon` seconds from its start, its
+/// steering angle within `max_steering_angle` and its torque command within `max_torque`.
+struct BoundedLoopRequirement {
+  const LogSignals* log;
+  double horizon;
+  double max_steering_angle;
+  double max_torque;
+};
+
 struct CandidateFit {
   const CandidateEffect* effect = nullptr;
   bool ok = false;
   std::string note;
   std::vector<double> theta, sigma;
   bool at_bound = false;  ///< a fitted parameter is pinned at a bound of its range
-  std::string stability_note;  ///< set when the fit had to be held to a closed loop that stays bounded
+  std::string stability_note;  ///< set when the least-squares fit's closed loop leaves the logged bounds
+  /// Logs on which the least-squares fit's closed loop leaves the bounds (empty: it stays bounded, or
+  /// it has been fitted again under them: `bounded_refit`).
+  std::vector<BoundedLoopRequirement> unbounded_on;
+  bool bounded_refit = false;
   SimConfig corrected;
   double train_before = 0.0, train_after = 0.0;
   double heldout_before = 0.0, heldout_after = 0.0;
@@ -305,12 +319,7 @@ class CandidateObjective {
 
   /// The closed loop must stay bounded on these logs over these horizons, its steering angle within
   /// `max_steering_angle` and its torque command within `max_torque`.
-  struct StabilityRequirement {
-    const LogSignals* log;
-    double horizon;
-    double max_steering_angle;
-    double max_torque;
-  };
+  using StabilityRequirement = BoundedLoopRequirement;
   void requireStability(std::vector<StabilityRequirement> requirements) { stable_on_ = std::move(requirements); }
 
  private:
@@ -426,15 +435,17 @@ std::vector<double> coordinateFit(const CandidateObjective& objective, std::vect
 
 /// The logged runs stayed bounded, so a fitted effect under which the closed loop of the log diverges
 /// contradicts the log, however well it fits the open-loop replays (a column fitted with too little
-/// damping does: the steering replay hardly sees the damping, the actuator's PD loop does). If the
-/// fitted closed loop diverges on a training log where the nominal one does not, the fit is redone
-/// from there with the closed loop over that whole log required to stay bounded. Bounded means within
-/// the simulator's divergence limits, with the steering angle within 1.5 times the logged range
-/// (+ 0.02 rad) and the torque command within twice the logged range (+ 5 N m): a column fitted at the
-/// edge of stability kept a 69 Hz oscillation that grew at 0.2 1/s to 0.93 rad and 40 kN m within the
-/// log's 30 s, under the monitor's 1.2 rad; one at 0.05 1/s reached 480 N m (logged: 35 N m).
-std::vector<double> holdStable(CandidateObjective& objective, std::vector<double> theta, const std::vector<Dataset>& train,
-                               const SimConfig& nominal, std::string* note) {
+/// damping does: the steering replay hardly sees the damping, the actuator's PD loop does). Bounded
+/// means within the simulator's divergence limits, with the steering angle within 1.5 times the logged
+/// range (+ 0.02 rad) and the torque command within twice the logged range (+ 5 N m): a column fitted at
+/// the edge of stability kept a 69 Hz oscillation that grew at 0.2 1/s to 0.93 rad and 40 kN m within
+/// the log's 30 s, under the monitor's 1.2 rad; one at 0.05 1/s reached 480 N m (logged: 35 N m).
+/// Returns the training logs on which the closed loop of theta leaves those bounds where the nominal's
+/// does not (empty: theta is consistent with the logs), and says so in `note`.
+std::vector<CandidateObjective::StabilityRequirement> stabilityRequirements(const CandidateObjective& objective,
+                                                                            const std::vector<double>& theta,
+                                                                            const std::vector<Dataset>& train,
+                                                                            const SimConfig& nominal, std::string* note) {
   std::vector<const LogSignals*> logs;
   for (const Dataset& d : train) {
     if (std::find(logs.begin(), logs.end(), d.log.get()) == logs.end()) logs.push_back(d.log.get());
@@ -456,13 +467,21 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
     for (std::size_t j = 0; j < theta.size(); ++j) {
       os << (j ? ", " : "") << objective.effect().params[j].name << " " << formatNumber(theta[j]);
     }
-    os << ") makes the closed loop diverge on " << log->log().source << " (" << d.message
-       << "); fitted again with the closed loop required to stay bounded";
+    os << ") makes the closed loop diverge on " << log->log().source << " (" << d.message << ")";
     *note = os.str();
   }
+  return requirements;
+}
+
+/// Fits again from theta with the closed loop required to stay bounded on `requirements` (see
+/// stabilityRequirements); *bounded says whether the result does.
+std::vector<double> holdStable(CandidateObjective& objective, std::vector<double> theta,
+                               const std::vector<CandidateObjective::StabilityRequirement>& requirements,
+                               std::string* note, bool* bounded_fit) {
+  *bounded_fit = true;
   if (requirements.empty()) return theta;
   // The search checks the first kSearchHorizon seconds of each log (a 60 s log's closed loop costs
-  // 0.2-0.3 s per point, and a refit visits ~300 points); the result is checked over the whole log,
+  // 0.2-0.3 s per point, and a refit visits ~200 points); the result is checked over the whole log,
   // and searched again over it only if it fails there.
   constexpr double kSearchHorizon = 10.0;
   auto shortened = requirements;
@@ -497,55 +516,61 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
     return true;
   };
   theta = search(shortened, theta);
-  if (!bounded(theta)) theta = search(requirements, theta);
-  if (!bounded(theta)) *note += "; no bounded fit found: it still diverges on the training logs";
+  bool ok = bounded(theta);
+  if (!ok) {
+    theta = search(requirements, theta);
+    ok = bounded(theta);
+  }
+  *bounded_fit = ok;
+  *note += ok ? "; fitted again with the closed loop required to stay bounded"
+              : "; fitted again with the closed loop required to stay bounded, but no bounded fit was found: "
+                "it still diverges on the training logs";
+  objective.requireStability({});
   return theta;
 }
 
-CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& train,
-                          const std::vector<Dataset>& heldout, const Evaluation& nominal_train,
-                          const Evaluation& nominal_heldout, const DiagnosisOptions& options) {
-  CandidateFit fit;
-  fit.effect = &effect;
-  CandidateObjective objective(effect, nominal, train, options.replay, nominal_train.sigma1);
-  std::vector<double> theta;
-  try {
-    theta = coordinateFit(objective);
-    if (!effect.profile) {
-      // Polish with Levenberg-Marquardt (Ceres, central differences) from the coordinate optimum.
-      std::vector<double> x = objective.toFitSpace(theta);
-      std::vector<double> r0;
-      if (objective.residuals(theta, &r0)) {
-        auto* cost = new ceres::DynamicNumericDiffCostFunction<CeresResiduals, ceres::CENTRAL>(
-            new CeresResiduals{&objective, r0.size()});
-        cost->AddParameterBlock(static_cast<int>(x.size()));
-        cost->SetNumResiduals(static_cast<int>(r0.size()));
-        ceres::Problem problem;
-        problem.AddResidualBlock(cost, nullptr, x.data());
-        for (std::size_t i = 0; i < x.size(); ++i) {
-          const auto& p = effect.params[i];
-          problem.SetParameterLowerBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.lower) : p.lower);
-          problem.SetParameterUpperBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.upper) : p.upper);
-        }
-        ceres::Solver::Options solver;
-        solver.linear_solver_type = ceres::DENSE_QR;
-        solver.max_num_iterations = 4;
-        solver.function_tolerance = 1e-6;
-        solver.logging_type = ceres::SILENT;
-        ceres::Solver::Summary summary;
-        ceres::Solve(solver, &problem, &summary);
-        const std::vector<double> polished = objective.toTheta(x.data());
-        if (std::getenv("LK_GAP_DEBUG")) std::fprintf(stderr, "%s: %s\n", effect.name.c_str(), summary.BriefReport().c_str());
-        if (objective.loss(polished) < objective.loss(theta)) theta = polished;
-      }
-    }
-    theta = holdStable(objective, theta, train, nominal, &fit.stability_note);
-  } catch (const std::exception& e) {
-    fit.note = std::string("fit failed: ") + e.what();
-    return fit;
+/// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt.
+std::vector<double> leastSquaresFit(const CandidateObjective& objective) {
+  const CandidateEffect& effect = objective.effect();
+  std::vector<double> theta = coordinateFit(objective);
+  if (effect.profile) return theta;
+  // Polish with Levenberg-Marquardt (Ceres, central differences) from the coordinate optimum.
+  std::vector<double> x = objective.toFitSpace(theta);
+  std::vector<double> r0;
+  if (!objective.residuals(theta, &r0)) return theta;
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<CeresResiduals, ceres::CENTRAL>(
+      new CeresResiduals{&objective, r0.size()});
+  cost->AddParameterBlock(static_cast<int>(x.size()));
+  cost->SetNumResiduals(static_cast<int>(r0.size()));
+  ceres::Problem problem;
+  problem.AddResidualBlock(cost, nullptr, x.data());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const auto& p = effect.params[i];
+    problem.SetParameterLowerBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.lower) : p.lower);
+    problem.SetParameterUpperBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.upper) : p.upper);
   }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 4;
+  solver.function_tolerance = 1e-6;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  const std::vector<double> polished = objective.toTheta(x.data());
+  if (std::getenv("LK_GAP_DEBUG")) std::fprintf(stderr, "%s: %s\n", effect.name.c_str(), summary.BriefReport().c_str());
+  if (objective.loss(polished) < objective.loss(theta)) theta = polished;
+  return theta;
+}
+
+/// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta.
+void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const std::vector<Dataset>& train,
+              const std::vector<Dataset>& heldout, const Evaluation& nominal_train, const Evaluation& nominal_heldout,
+              const DiagnosisOptions& options, CandidateFit* out) {
+  CandidateFit& fit = *out;
+  const CandidateEffect& effect = objective.effect();
   fit.theta = theta;
   fit.corrected = objective.configFor(theta);
+  fit.at_bound = false;
   for (std::size_t i = 0; i < theta.size(); ++i) {
     const auto& p = effect.params[i];
     const double span = p.log_scale ? std::log(p.upper / p.lower) : (p.upper - p.lower);
@@ -557,7 +582,6 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nomina
   // 1-sigma uncertainty from the Gauss-Newton covariance s^2 (J^T J)^-1 at the optimum (central
   // differences in SI units). Residuals of neighbouring samples are correlated, so this is a lower bound.
   // (The local curvature of the least-squares loss, also at a fit held to a stable closed loop.)
-  objective.requireStability({});
   std::vector<double> r_opt;
   if (objective.residuals(theta, &r_opt)) {
     const std::size_t n = r_opt.size(), p = theta.size();
@@ -602,8 +626,48 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nomina
   }
   fit.evidence = evidenceOf(nominal_heldout.scores, held_ev.scores);
   fit.ok = true;
+}
+
+/// The least-squares fit of one candidate, scored; `unbounded_on` lists the training logs whose
+/// closed loop it makes leave the logged bounds (refitBounded fits it again under them).
+CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& train,
+                          const std::vector<Dataset>& heldout, const Evaluation& nominal_train,
+                          const Evaluation& nominal_heldout, const DiagnosisOptions& options) {
+  CandidateFit fit;
+  fit.effect = &effect;
+  CandidateObjective objective(effect, nominal, train, options.replay, nominal_train.sigma1);
+  std::vector<double> theta;
+  try {
+    theta = leastSquaresFit(objective);
+    fit.unbounded_on = stabilityRequirements(objective, theta, train, nominal, &fit.stability_note);
+  } catch (const std::exception& e) {
+    fit.note = std::string("fit failed: ") + e.what();
+    return fit;
+  }
+  scoreFit(objective, theta, train, heldout, nominal_train, nominal_heldout, options, &fit);
   return fit;
 }
+
+/// Fits `fit` again from its least-squares parameters with its closed loop required to stay bounded
+/// on the logs in fit->unbounded_on, and scores it again.
+void refitBounded(const SimConfig& nominal, const std::vector<Dataset>& train, const std::vector<Dataset>& heldout,
+                  const Evaluation& nominal_train, const Evaluation& nominal_heldout, const DiagnosisOptions& options,
+                  CandidateFit* fit) {
+  CandidateObjective objective(*fit->effect, nominal, train, options.replay, nominal_train.sigma1);
+  std::vector<double> theta;
+  bool bounded = false;
+  try {
+    theta = holdStable(objective, fit->theta, fit->unbounded_on, &fit->stability_note, &bounded);
+  } catch (const std::exception& e) {
+    fit->ok = false;
+    fit->note = std::string("bounded refit failed: ") + e.what();
+    return;
+  }
+  if (bounded) fit->unbounded_on.clear();
+  fit->bounded_refit = true;
+  scoreFit(objective, theta, train, heldout, nominal_train, nominal_heldout, options, fit);
+}
+
 
 // ================================================================================================
 // Where: windows, bands, regimes
@@ -890,6 +954,8 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     if (options.progress) options.progress(message);
   };
   GapReport report;
+  using Clock = std::chrono::steady_clock;
+  auto secondsSince = [](Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   // ---- Data sets ------------------------------------------------------------------------------
   std::vector<std::shared_ptr<const LogSignals>> train_logs, held_logs;
@@ -930,6 +996,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
 
   // ---- Where ----------------------------------------------------------------------------------
   say("replaying subsystems with the nominal model");
+  const Clock::time_point where_start = Clock::now();
   const std::set<std::string> all = allSubsystems();
   Evaluation nominal_train = evaluate(nominal, train, all, options.replay);
   Evaluation nominal_held = evaluate(nominal, held, all, options.replay);
@@ -948,6 +1015,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   const Evaluation nominal_all = evaluate(nominal, everything, all, options.replay);
   report.where = whereAnalysis(nominal_all, everything, nominal, options.upstream_share, artifacts);
   const double gap_before = gapOf(nominal_held.scores, {});
+  report.wall_seconds.emplace_back("where", secondsSince(where_start));
 
   // ---- Which ----------------------------------------------------------------------------------
   std::vector<const CandidateEffect*> candidates;
@@ -957,22 +1025,73 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     }
   }
   std::vector<CandidateFit> fits(candidates.size());
+  std::vector<double> fit_seconds(candidates.size(), 0.0);
+  const Clock::time_point which_start = Clock::now();
   parallelFor(
       candidates.size(), options.threads,
-      [&](std::size_t i) { fits[i] = fitCandidate(*candidates[i], nominal, train, held, nominal_train, nominal_held, options); },
+      [&](std::size_t i) {
+        const Clock::time_point start = Clock::now();
+        fits[i] = fitCandidate(*candidates[i], nominal, train, held, nominal_train, nominal_held, options);
+        fit_seconds[i] = secondsSince(start);
+      },
       [&](std::size_t i) { say("fitting " + candidates[i]->name); });
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    report.wall_seconds.emplace_back("fit " + candidates[i]->name, fit_seconds[i]);
+  }
 
   // A candidate can be the cause only if it changes the subsystem where the gap lies (a pure steering
   // effect leaves no chassis residual; no candidate touches the actuator subsystem).
   const std::string& where_subsystem = report.where.subsystem;
-  std::set<std::string> pinned;
-  for (const auto& fit : fits) {
-    if (fit.ok && fit.at_bound) pinned.insert(fit.effect->name);
-  }
   auto changesWhere = [&](const std::string& effect) {
     const CandidateEffect& e = candidateEffect(effect);
     return std::find(e.subsystems.begin(), e.subsystems.end(), where_subsystem) != e.subsystems.end();
   };
+
+  // Bounded refits. A least-squares fit whose closed loop leaves the logged bounds is contradicted by
+  // the logs; fitting it again under those bounds costs a closed-loop run per point visited (40-60 s on
+  // a 60 s log). It is worth that only if the refit could become the verdict: the refit fits the
+  // training data no better than the unconstrained fit, so a candidate whose unconstrained held-out
+  // gap already loses to the best qualifying bounded candidate (or misses the min_shrink needed), or
+  // that does not change the subsystem carrying the gap, or a gap below the detection threshold, keeps
+  // its unconstrained fit marked unbounded, and cannot be the verdict.
+  double bar = gap_before * (1.0 - options.min_shrink);
+  for (const auto& fit : fits) {
+    if (fit.ok && fit.unbounded_on.empty() && !fit.at_bound && changesWhere(fit.effect->name) &&
+        fit.evidence >= options.min_evidence_per_parameter * static_cast<double>(fit.theta.size())) {
+      bar = std::min(bar, fit.heldout_after);
+    }
+  }
+  std::vector<std::size_t> refit;
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const CandidateFit& fit = fits[i];
+    if (!fit.ok || fit.unbounded_on.empty()) continue;
+    if (gap_before >= options.detection_gap && changesWhere(fit.effect->name) && fit.heldout_after < bar) {
+      refit.push_back(i);
+    } else {
+      char numbers[96];
+      std::snprintf(numbers, sizeof numbers, "held-out gap %.4g against %.4g to beat", fit.heldout_after, bar);
+      fits[i].stability_note +=
+          std::string("; not fitted again under the logged bounds: it could not become the verdict (") + numbers + ")";
+    }
+  }
+  std::vector<double> refit_seconds(refit.size(), 0.0);
+  parallelFor(
+      refit.size(), options.threads,
+      [&](std::size_t k) {
+        const Clock::time_point start = Clock::now();
+        refitBounded(nominal, train, held, nominal_train, nominal_held, options, &fits[refit[k]]);
+        refit_seconds[k] = secondsSince(start);
+      },
+      [&](std::size_t k) { say("fitting " + candidates[refit[k]]->name + " again with its closed loop bounded"); });
+  for (std::size_t k = 0; k < refit.size(); ++k) {
+    report.wall_seconds.emplace_back("bounded refit " + candidates[refit[k]]->name, refit_seconds[k]);
+  }
+  report.wall_seconds.emplace_back("which", secondsSince(which_start));
+
+  std::set<std::string> pinned;
+  for (const auto& fit : fits) {
+    if (fit.ok && fit.at_bound) pinned.insert(fit.effect->name);
+  }
   for (const auto& fit : fits) {
     RankedEffect r;
     r.effect = fit.effect->name;
@@ -993,12 +1112,15 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
       r.shrink = gap_before > 0.0 ? 1.0 - fit.heldout_after / gap_before : 0.0;
     }
     r.score = fit.ok ? fit.evidence : 0.0;
+    r.closed_loop_bounded = !fit.ok || fit.unbounded_on.empty();
     if (fit.ok && fit.at_bound) report.notes.push_back(fit.effect->name + ": a fitted parameter is pinned at a bound of its range");
     if (fit.ok && !fit.stability_note.empty()) report.notes.push_back(fit.effect->name + ": " + fit.stability_note);
     report.ranking.push_back(r);
   }
-  std::sort(report.ranking.begin(), report.ranking.end(),
-            [](const RankedEffect& a, const RankedEffect& b) { return a.heldout_gap_after < b.heldout_gap_after; });
+  std::sort(report.ranking.begin(), report.ranking.end(), [](const RankedEffect& a, const RankedEffect& b) {
+    if (a.closed_loop_bounded != b.closed_loop_bounded) return a.closed_loop_bounded;
+    return a.heldout_gap_after < b.heldout_gap_after;
+  });
 
   // ---- Verdict --------------------------------------------------------------------------------
   GapVerdict& v = report.verdict;
@@ -1042,7 +1164,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     v.confidence = std::clamp(best->shrink, 0.0, 1.0) * (0.5 + 0.5 * std::clamp(margin / 0.3, 0.0, 1.0));
     if (pinned_winner) v.confidence *= 0.5;
     for (const auto& r : report.ranking) {
-      if (&r != best && changesWhere(r.effect) && r.shrink >= options.min_shrink &&
+      if (&r != best && changesWhere(r.effect) && r.closed_loop_bounded && r.shrink >= options.min_shrink &&
           best->shrink - r.shrink < 0.1) {
         v.confusable_with.push_back(r.effect);
       }
@@ -1075,6 +1197,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   }
   if (options.closed_loop) {
     say("closed-loop replays");
+    const Clock::time_point how_far_start = Clock::now();
     const auto& cl_logs = held_logs.empty() ? train_logs : held_logs;
     double before = 0.0, after = 0.0;
     int counted = 0;
@@ -1114,6 +1237,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     }
     report.how_far.before = counted ? std::sqrt(before / counted) : kNaN;
     report.how_far.after = counted ? std::sqrt(after / counted) : kNaN;
+    report.wall_seconds.emplace_back("how_far", secondsSince(how_far_start));
   }
   say("done");
   return report;

@@ -8,10 +8,11 @@
 //                  "regimes": [{"variable", "lo", "hi", "share", "time_share"}] },
 //     "ranking": [{"effect", "params": {}, "param_sigma": {}, "config": {"key": "value"},
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
-//                  "shrink", "score"}],
+//                  "shrink", "score", "closed_loop_bounded"}],
 //     "verdict": { "effect", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..] },
 //     "how_far": { "before", "after", "shrink", "subsystems_before": {}, "subsystems_after": {},
-//                  "subsystems_noise_reference": {} } }
+//                  "subsystems_noise_reference": {} },
+//     "wall_seconds": [{"stage", "seconds"}] }
 // how_far.shrink = 1 - after / before is derived (written for readers, ignored when read back).
 // Non-finite numbers (NaN, +-Inf) are written as JSON null (JSON has no NaN) and read back as NaN,
 // so an infinite value does not survive a round trip.
@@ -84,6 +85,7 @@ OrderedJson toJson(const RankedEffect& r) {
   out["heldout_gap_after"] = number(r.heldout_gap_after);
   out["shrink"] = number(r.shrink);
   out["score"] = number(r.score);
+  out["closed_loop_bounded"] = r.closed_loop_bounded;
   return out;
 }
 
@@ -124,6 +126,10 @@ OrderedJson toJson(const GapReport& r) {
   for (const RankedEffect& e : r.ranking) out["ranking"].push_back(toJson(e));
   out["verdict"] = toJson(r.verdict);
   out["how_far"] = toJson(r.how_far);
+  out["wall_seconds"] = OrderedJson::array();
+  for (const auto& [stage, seconds] : r.wall_seconds) {
+    out["wall_seconds"].push_back(OrderedJson{{"stage", stage}, {"seconds", number(seconds)}});
+  }
   return out;
 }
 
@@ -167,6 +173,12 @@ class Reader {
 
   void get(const Json& j, const std::string& where, const std::string& key, double* out, bool required = false) const {
     if (const Json* m = member(j, where, key, required)) *out = toDouble(*m, where + "." + key);
+  }
+  void get(const Json& j, const std::string& where, const std::string& key, bool* out, bool required = false) const {
+    const Json* m = member(j, where, key, required);
+    if (!m) return;
+    if (!m->is_boolean()) fail(where + "." + key, "expected true or false, found " + m->dump());
+    *out = m->get<bool>();
   }
   void get(const Json& j, const std::string& where, const std::string& key, std::string* out,
            bool required = false) const {
@@ -318,6 +330,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "heldout_gap_after", &s.heldout_gap_after, true);
     r.get(e, p, "shrink", &s.shrink, true);
     r.get(e, p, "score", &s.score);
+    r.get(e, p, "closed_loop_bounded", &s.closed_loop_bounded);
     rep.ranking.push_back(s);
   });
 
@@ -339,6 +352,12 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(*h, hp, "subsystems_after", &rep.how_far.subsystems_after);
     r.get(*h, hp, "subsystems_noise_reference", &rep.how_far.subsystems_noise_reference);
   }
+  r.forEach(j, root, "wall_seconds", false, [&](const Json& e, const std::string& p) {
+    std::pair<std::string, double> stage;
+    r.get(e, p, "stage", &stage.first, true);
+    r.get(e, p, "seconds", &stage.second, true);
+    rep.wall_seconds.push_back(stage);
+  });
   return rep;
 }
 

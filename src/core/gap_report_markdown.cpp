@@ -136,11 +136,13 @@ void writeRanking(std::ostream& out, const GapReport& r) {
   for (std::size_t i = 0; i < r.ranking.size(); ++i) {
     const RankedEffect& e = r.ranking[i];
     const bool winner = e.effect == r.verdict.effect;
-    out << "| " << i + 1 << " | " << (winner ? "**" + cell(e.effect) + "**" : cell(e.effect)) << " | "
+    const std::string name = cell(e.effect) + (e.closed_loop_bounded ? "" : " (closed loop unbounded)");
+    out << "| " << i + 1 << " | " << (winner ? "**" + name + "**" : name) << " | "
         << cell(paramsWithSigma(e)) << " | " << num(e.heldout_gap_before) << " | " << num(e.heldout_gap_after) << " | "
         << percent(e.shrink) << " | " << num(e.score, "%.3g") << " |\n";
   }
-  out << "\nshrink = 1 − gap after / gap before, on held-out data.\n\n";
+  out << "\nshrink = 1 − gap after / gap before, on held-out data. \"closed loop unbounded\": the fitted effect "
+         "makes the closed loop of a training log leave the logged bounds, so it cannot be the cause.\n\n";
 }
 
 void writeWhere(std::ostream& out, const GapReport& r) {
@@ -222,6 +224,11 @@ void writeData(std::ostream& out, const GapReport& r) {
   if (!r.notes.empty()) {
     out << "\nNotes:\n\n";
     for (const std::string& note : r.notes) out << "- " << note << "\n";
+  }
+  if (!r.wall_seconds.empty()) {
+    out << "\nWall time per stage:";
+    for (const auto& [stage, seconds] : r.wall_seconds) out << " " << stage << " " << num(seconds) << " s;";
+    out << "\n";
   }
   out << "\n";
 }

@@ -12,7 +12,7 @@ WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
   WinnerSelection s;
   const RankedEffect* best_pinned = nullptr;
   for (const auto& r : ranking) {
-    if (!changes_where(r.effect)) continue;
+    if (!changes_where(r.effect) || !r.closed_loop_bounded) continue;
     if (s.top == nullptr) s.top = &r;
     if (!qualifies(r)) continue;
     if (pinned.count(r.effect) != 0) {
@@ -26,7 +26,7 @@ WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
     s.winner_pinned = true;
   }
   for (const auto& r : ranking) {
-    if (&r != s.winner && changes_where(r.effect)) {
+    if (&r != s.winner && changes_where(r.effect) && r.closed_loop_bounded) {
       s.runner_up = &r;
       break;
     }

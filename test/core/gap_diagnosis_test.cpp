@@ -39,6 +39,13 @@ const RankedEffect& ranked(const GapReport& r, const std::string& effect) {
   throw std::runtime_error("effect not ranked: " + effect);
 }
 
+bool hasStage(const GapReport& r, const std::string& stage) {
+  for (const auto& [name, seconds] : r.wall_seconds) {
+    if (name == stage) return seconds >= 0.0;
+  }
+  return false;
+}
+
 TEST(GapDiagnosis, FindsAHiddenSensingDelayAndItsSize) {
   const GapReport r = diagnoseCase("sensing_delay-large-lane_change", {"sensing_delay", "pose_bias", "inertia"});
   EXPECT_EQ(r.where.subsystem, "tracker");
@@ -80,10 +87,35 @@ TEST(GapDiagnosis, FindsAProgressiveColumnWithAFitUnderWhichTheLoggedLoopStaysBo
     EXPECT_EQ(note.find("corrected closed-loop replay"), std::string::npos) << note;
   }
   EXPECT_TRUE(held);
+  EXPECT_TRUE(ranked(r, "steering_compliance").closed_loop_bounded);
+  EXPECT_TRUE(hasStage(r, "bounded refit steering_compliance"));
   EXPECT_GT(p.at("damping"), 5.0);
   // Nor does it oscillate within bounds: the corrected loop follows the log as closely as the nominal
   // (a fit at the edge of stability, bounded only by the monitor's 1.2 rad, gave 28.9 against 0.026).
   EXPECT_LT(r.how_far.after, 2.0 * r.how_far.before);
+}
+
+TEST(GapDiagnosis, AnUnboundedFitThatCannotWinIsMarkedAndNotFittedAgain) {
+  // On a steering-friction log the actuation-delay fit runs to the top of its range (10 ms more), and
+  // its closed loop oscillates out of the logged steering range within 0.1 s. Its held-out gap is far
+  // from the friction fit's, so a bounded refit (a closed-loop run per point visited) cannot change
+  // the verdict: it is skipped, and the unbounded fit ranks last, never the cause.
+  const GapReport r = diagnoseCase("steering_friction-large-lane_change", {"steering_friction", "actuation_delay"});
+  EXPECT_EQ(r.verdict.effect, "steering_friction") << r.verdict.reason;
+  const RankedEffect& delay = ranked(r, "actuation_delay");
+  EXPECT_FALSE(delay.closed_loop_bounded);
+  EXPECT_EQ(r.ranking.back().effect, "actuation_delay");
+  EXPECT_TRUE(ranked(r, "steering_friction").closed_loop_bounded);
+  EXPECT_FALSE(hasStage(r, "bounded refit actuation_delay"));
+  EXPECT_TRUE(hasStage(r, "fit actuation_delay"));
+  bool explained = false;
+  for (const auto& note : r.notes) {
+    if (note.rfind("actuation_delay: the least-squares fit", 0) == 0 && note.find("not fitted again") != std::string::npos) {
+      explained = true;
+    }
+  }
+  EXPECT_TRUE(explained);
+  EXPECT_TRUE(r.verdict.confusable_with.empty());
 }
 
 TEST(GapDiagnosis, NoEffectIsUnexplained) {

@@ -69,6 +69,7 @@ GapReport sampleReport() {
   b.heldout_gap_after = 0.2;
   b.shrink = 1.0 - 0.2 / 0.33;
   b.score = 30;
+  b.closed_loop_bounded = false;
   r.ranking = {a, b};
   r.verdict.effect = "tire_lag";
   r.verdict.confidence = 0.91;
@@ -81,6 +82,7 @@ GapReport sampleReport() {
   r.how_far.after = 0.06;
   r.how_far.subsystems_before = {{"chassis", 0.35}, {"steering", 0.02}};
   r.how_far.subsystems_after = {{"chassis", 0.05}, {"steering", 0.02}};
+  r.wall_seconds = {{"where", 0.8}, {"fit tire_lag", 5.75}, {"which", 12.5}};
   return r;
 }
 
@@ -137,6 +139,7 @@ void expectSame(const GapReport& a, const GapReport& b) {
     expectSameDouble(x.heldout_gap_after, y.heldout_gap_after, "heldout_gap_after");
     expectSameDouble(x.shrink, y.shrink, "shrink");
     expectSameDouble(x.score, y.score, "score");
+    EXPECT_EQ(x.closed_loop_bounded, y.closed_loop_bounded) << x.effect;
   }
   EXPECT_EQ(a.verdict.effect, b.verdict.effect);
   expectSameDouble(a.verdict.confidence, b.verdict.confidence, "confidence");
@@ -149,6 +152,7 @@ void expectSame(const GapReport& a, const GapReport& b) {
   expectSameDouble(a.how_far.after, b.how_far.after, "how_far.after");
   EXPECT_EQ(a.how_far.subsystems_before, b.how_far.subsystems_before);
   EXPECT_EQ(a.how_far.subsystems_after, b.how_far.subsystems_after);
+  EXPECT_EQ(a.wall_seconds, b.wall_seconds);
 }
 
 TEST(GapReportNames, CandidateEffectsAreExactlyDesignSection5) {

@@ -63,5 +63,20 @@ TEST(WinnerSelection, PinnedFitWinsWhenNothingElseQualifies) {
   EXPECT_EQ(s.runner_up->effect, "free");
 }
 
+TEST(WinnerSelection, AFitWhoseClosedLoopLeavesTheLoggedBoundsIsNeverPicked) {
+  RankedEffect unbounded = candidate("unbounded", 0.9, 1e4);
+  unbounded.closed_loop_bounded = false;
+  const std::vector<RankedEffect> ranking{unbounded, candidate("bounded", 0.5, 1e4)};
+  const WinnerSelection s = selectWinner(ranking, kAll, {}, kShrink, kEvidence);
+  ASSERT_NE(s.winner, nullptr);
+  EXPECT_EQ(s.winner->effect, "bounded");
+  EXPECT_EQ(s.top->effect, "bounded");
+  EXPECT_EQ(s.runner_up, nullptr);
+  // Alone, it leaves the gap unexplained.
+  const WinnerSelection alone = selectWinner({unbounded}, kAll, {}, kShrink, kEvidence);
+  EXPECT_EQ(alone.winner, nullptr);
+  EXPECT_EQ(alone.top, nullptr);
+}
+
 }  // namespace
 }  // namespace lane_keeping

@@ -52,6 +52,9 @@ struct RankedEffect {
   double heldout_gap_after = 0.0;
   double shrink = 0.0;                    ///< 1 - heldout_gap_after / heldout_gap_before
   double score = 0.0;                     ///< evidence used for the verdict (see README)
+  /// False when the fitted effect makes the closed loop of a training log leave the logged bounds
+  /// (the log contradicts it): such a candidate cannot be the verdict and ranks last.
+  bool closed_loop_bounded = true;
 };
 
 struct GapVerdict {
@@ -84,6 +87,10 @@ struct GapReport {
   std::vector<RankedEffect> ranking;  ///< best first
   GapVerdict verdict;
   ClosedLoopGap how_far;
+  /// Wall time per stage in seconds, in the order run: "where" (nominal replays, noise reference),
+  /// "fit <effect>" per candidate (on its worker thread), "which" (all fits), "how_far" (closed-loop
+  /// replays). Says where a slow diagnosis spends its time.
+  std::vector<std::pair<std::string, double>> wall_seconds;
 };
 
 /// DIR/report.json (DESIGN §5 fields and the rest). Throws InputError if DIR cannot be written.

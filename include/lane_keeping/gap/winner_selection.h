@@ -6,7 +6,8 @@
 /// of the held-out gap and has at least `min_evidence_per_parameter` held-out evidence per fitted
 /// parameter. A fit with a parameter pinned at a bound of its range is stretching to imitate something
 /// else, or the data fix only a combination of its parameters: it ranks below every unpinned candidate
-/// that qualifies, and wins only when none does.
+/// that qualifies, and wins only when none does. A candidate whose fitted closed loop leaves the logged
+/// bounds (RankedEffect::closed_loop_bounded false) is contradicted by the logs: it is never picked.
 #include <functional>
 #include <set>
 #include <string>
