@@ -101,6 +101,45 @@ void integrate(F&& f, double t0, double t1, double h, Eigen::VectorXd& q, Rk4& r
   }
 }
 
+/// The tires' states at t0 from the logged motion before it: settled at ta = max(log start,
+/// t0 - kTireLeadIn), then their own equations driven by the logged motion up to t0 (Deur's lumped
+/// LuGre relaxes over ~L / V = 13 ms at 15 m/s). Settling them at t0 instead left an aligning-moment
+/// error at every interval start of the slip rate times that lag, which short intervals could not
+/// forget. `set_motion(t)` writes the logged motion at t into `full` (the model's state vector; the
+/// tire states in it are overwritten); the front tire's states come first, then, if `with_rear`, the
+/// rear's. `full_dot` is scratch.
+template <typename SetMotion>
+Eigen::VectorXd tireStatesAfterLeadIn(const SingleTrackModel& model, bool with_rear, double log_start, double t0,
+                                      double step, const SetMotion& set_motion, Eigen::VectorXd& full,
+                                      Eigen::VectorXd& full_dot) {
+  const int front0 = model.frontTireOffset(), front_n = model.frontTire().stateSize();
+  const int rear0 = model.rearTireOffset(), rear_n = with_rear ? model.rearTire().stateSize() : 0;
+  const double ta = std::max(log_start, t0 - kTireLeadIn);
+  set_motion(ta);
+  const auto c = model.contacts(full.data(), SingleTrackModel::Trig<double>(full[kDelta]));
+  std::vector<double> settled(std::max(front_n, rear_n));
+  Eigen::VectorXd z(front_n + rear_n);
+  model.frontTire().steadyStateVector(c.front, settled.data());
+  for (int i = 0; i < front_n; ++i) z[i] = settled[i];
+  if (rear_n > 0) model.rearTire().steadyStateVector(c.rear, settled.data());
+  for (int i = 0; i < rear_n; ++i) z[front_n + i] = settled[i];
+  if (t0 > ta) {
+    auto tires = [&](double t, const Eigen::VectorXd& state, Eigen::VectorXd& state_dot) {
+      set_motion(t);
+      for (int i = 0; i < front_n; ++i) full[front0 + i] = state[i];
+      for (int i = 0; i < rear_n; ++i) full[rear0 + i] = state[front_n + i];
+      const auto contacts = model.contacts(full.data(), SingleTrackModel::Trig<double>(full[kDelta]));
+      model.frontTire().evaluate(contacts.front, full.data() + front0, full_dot.data() + front0);
+      if (rear_n > 0) model.rearTire().evaluate(contacts.rear, full.data() + rear0, full_dot.data() + rear0);
+      for (int i = 0; i < front_n; ++i) state_dot[i] = full_dot[front0 + i];
+      for (int i = 0; i < rear_n; ++i) state_dot[front_n + i] = full_dot[rear0 + i];
+    };
+    Rk4 rk4(front_n + rear_n);
+    integrate(tires, ta, t0, step, z, rk4);
+  }
+  return z;
+}
+
 /// One shooting interval with nuisance initial conditions, estimated by maximum a posteriori:
 /// each nuisance starts at its logged value with a Gaussian prior of the measurement's noise
 /// (`prior_sigma`), and the outputs are weighted by their measurement noise (`output_sigma`):
@@ -353,34 +392,14 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
       q0[2 + (sp.compliant() ? 2 : 0)] = (w > 0 ? 1.0 : (w < 0 ? -1.0 : 0.0)) * g / sp.friction_stiffness;
     }
     if (front_n > 0) {
-      // The tire's state at t0 from the logged motion before it: settled at t0 - lead, then its own
-      // equations driven by the logged steering angle and rate (Deur's lumped LuGre relaxes over
-      // ~L / V = 13 ms at 15 m/s). Settling it at t0 instead left an aligning-moment error at every
-      // interval start of the slip rate times that lag, which the short intervals could not forget.
-      const double lead = kTireLeadIn;
-      const double ta = std::max(log.start(), t0 - lead);
-      Eigen::VectorXd warm = Eigen::VectorXd::Zero(n);
-      warm[0] = log.at(C::kDelta, ta);
-      warm[1] = log.at(C::kDeltaRate, ta);
-      assemble(ta, warm);
-      const auto contacts = model.contacts(full.data(), SingleTrackModel::Trig<double>(warm[0]));
-      std::vector<double> settled(front_n);
-      model.frontTire().steadyStateVector(contacts.front, settled.data());
-      Eigen::VectorXd z = Eigen::Map<const Eigen::VectorXd>(settled.data(), front_n);
-      if (t0 > ta) {
-        auto tire = [&](double t, const Eigen::VectorXd& state, Eigen::VectorXd& state_dot) {
-          Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
-          motion[0] = log.at(C::kDelta, t);
-          motion[1] = log.at(C::kDeltaRate, t);
-          assemble(t, motion);
-          for (int i = 0; i < front_n; ++i) full[front0 + i] = state[i];
-          const auto c = model.contacts(full.data(), SingleTrackModel::Trig<double>(motion[0]));
-          model.frontTire().evaluate(c.front, full.data() + front0, full_dot.data() + front0);
-          for (int i = 0; i < front_n; ++i) state_dot[i] = full_dot[front0 + i];
-        };
-        Rk4 tire_rk4(front_n);
-        integrate(tire, ta, t0, tire_step, z, tire_rk4);
-      }
+      // The front tire's state at t0, driven by the logged steering angle and rate before it.
+      Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
+      const auto logged = [&](double t) {
+        motion[0] = log.at(C::kDelta, t);
+        motion[1] = log.at(C::kDeltaRate, t);
+        assemble(t, motion);
+      };
+      const Eigen::VectorXd z = tireStatesAfterLeadIn(model, false, log.start(), t0, tire_step, logged, full, full_dot);
       for (int i = 0; i < front_n; ++i) q0[2 + steer_n + i] = z[i];
     }
     Eigen::MatrixXd measured(last - first, 1);
@@ -491,38 +510,14 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     q0[3] = log.at(C::kSigma1, t0);
     q0[4] = log.at(C::kYawRate, t0);
     if (front_n + rear_n > 0) {
-      // The tires' states at t0 from the logged motion before it (as in the steering replay): settled
-      // at t0 - lead, then their own equations driven by the logged steering, yaw rate and sigma1.
-      const double ta = std::max(log.start(), t0 - kTireLeadIn);
+      // Both tires' states at t0, driven by the logged steering, yaw rate and sigma1 before it.
       Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
-      auto logged = [&](double t) {
+      const auto logged = [&](double t) {
         motion[3] = log.at(C::kSigma1, t);
         motion[4] = log.at(C::kYawRate, t);
         assemble(t, motion);
       };
-      logged(ta);
-      const auto c = model.contacts(full.data(), SingleTrackModel::Trig<double>(full[kDelta]));
-      std::vector<double> settled(std::max(front_n, rear_n));
-      Eigen::VectorXd z(front_n + rear_n);
-      model.frontTire().steadyStateVector(c.front, settled.data());
-      for (int i = 0; i < front_n; ++i) z[i] = settled[i];
-      model.rearTire().steadyStateVector(c.rear, settled.data());
-      for (int i = 0; i < rear_n; ++i) z[front_n + i] = settled[i];
-      if (t0 > ta) {
-        auto tires = [&](double t, const Eigen::VectorXd& state, Eigen::VectorXd& state_dot) {
-          logged(t);
-          for (int i = 0; i < front_n; ++i) full[front0 + i] = state[i];
-          for (int i = 0; i < rear_n; ++i) full[rear0 + i] = state[front_n + i];
-          const SingleTrackModel::Trig<double> steer(full[kDelta]);
-          const auto contacts = model.contacts(full.data(), steer);
-          model.frontTire().evaluate(contacts.front, full.data() + front0, full_dot.data() + front0);
-          model.rearTire().evaluate(contacts.rear, full.data() + rear0, full_dot.data() + rear0);
-          for (int i = 0; i < front_n; ++i) state_dot[i] = full_dot[front0 + i];
-          for (int i = 0; i < rear_n; ++i) state_dot[front_n + i] = full_dot[rear0 + i];
-        };
-        Rk4 tire_rk4(front_n + rear_n);
-        integrate(tires, ta, t0, step, z, tire_rk4);
-      }
+      const Eigen::VectorXd z = tireStatesAfterLeadIn(model, true, log.start(), t0, step, logged, full, full_dot);
       for (int i = 0; i < front_n + rear_n; ++i) q0[5 + i] = z[i];
     }
     assemble(t0, q0);
