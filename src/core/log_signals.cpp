@@ -33,7 +33,7 @@ std::vector<double> smoothedDerivative(const std::vector<double>& t, const std::
       r += basis * values[j];
     }
     const Eigen::Vector3d c = A.ldlt().solve(r);
-    out[i] = order == 1 ? c[1] / scale : 2.0 * c[2] / (scale * scale);
+    out[i] = order == 0 ? c[0] : (order == 1 ? c[1] / scale : 2.0 * c[2] / (scale * scale));
   }
   return out;
 }
@@ -74,11 +74,19 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   for (std::size_t i = 0; i < t.size(); ++i) {
     values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
   }
+  values_[kXSmoothed] = smoothedDerivative(t, log_.x, windows.pose, 0);
+  values_[kYSmoothed] = smoothedDerivative(t, log_.y, windows.pose, 0);
+  values_[kPsiSmoothed] = smoothedDerivative(t, log_.psi, windows.pose, 0);
   for (Channel c : {kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration}) {
     noise_[c] = fourthDifferenceNoise(values_[c]);
   }
   double step = log_.medianStep();
   if (!(step > 0.0)) step = 0.01;
+  // The centre value of a local quadratic over n samples keeps ~ 9 / (4 n) of the noise variance.
+  const double pose_samples = std::max(5.0, 2.0 * windows.pose / step + 1.0);
+  for (const auto& [smoothed, raw] : {std::pair{kXSmoothed, kX}, {kYSmoothed, kY}, {kPsiSmoothed, kPsi}}) {
+    noise_[smoothed] = noise_[raw] * std::sqrt(9.0 / (4.0 * pose_samples));
+  }
   auto derivativeNoise = [&](double sigma, double half_width) {
     const double n = std::max(5.0, 2.0 * half_width / step + 1.0);
     return sigma * std::sqrt(3.0 / (n * half_width * half_width));
@@ -118,10 +126,25 @@ double LogSignals::at(Channel c, double t, std::size_t* hint) const {
   return v[i] + w * (v[i + 1] - v[i]);
 }
 
+double LogSignals::nearestAlongSmoothed(Channel c, double t) const {
+  Channel smoothed;
+  switch (c) {
+    case kX: smoothed = kXSmoothed; break;
+    case kY: smoothed = kYSmoothed; break;
+    case kPsi: smoothed = kPsiSmoothed; break;
+    default: return at(c, t);
+  }
+  const auto& times = log_.t;
+  std::size_t j = indexAtOrBefore(t);
+  if (j + 1 < times.size() && t - times[j] > times[j + 1] - t) ++j;
+  return values_[c][j] + (at(smoothed, t) - values_[smoothed][j]);
+}
+
 const char* LogSignals::name(Channel c) {
   static const char* names[] = {"x",         "y",          "psi",        "yaw_rate",     "delta",  "delta_des",
                                 "torque",    "v",          "ay",         "delta_rate",   "delta_acceleration",
-                                "delta_des_rate", "yaw_acceleration", "x_dot", "y_dot", "sigma1"};
+                                "delta_des_rate", "yaw_acceleration", "x_dot", "y_dot", "sigma1",
+                                "x_smoothed", "y_smoothed", "psi_smoothed"};
   return names[c];
 }
 

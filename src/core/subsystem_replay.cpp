@@ -232,8 +232,12 @@ SubsystemReplay replayTracker(const SimConfig& config, const LogSignals& log, co
     const double t = times[i];
     if (!inSegments(t, segments) || t - tau < log.start()) continue;
     const double q = t - tau;  // Beregi eq 11: the pose tau1 earlier
-    const PoseSample pose{log.at(C::kX, q),    log.at(C::kY, q),    log.at(C::kPsi, q),
-                          log.at(C::kXDot, q), log.at(C::kYDot, q), log.at(C::kYawRate, q)};
+    // Nearest samples carried along the smoothed pose (LogSignals::nearestAlongSmoothed): interpolating
+    // the noisy samples made the noise depend on where between samples t - tau falls, and a fitted
+    // delay chased half-sample offsets.
+    const PoseSample pose{log.nearestAlongSmoothed(C::kX, q), log.nearestAlongSmoothed(C::kY, q),
+                          log.nearestAlongSmoothed(C::kPsi, q), log.at(C::kXDot, q), log.at(C::kYDot, q),
+                          log.at(C::kYawRate, q)};
     trace.t.push_back(t);
     trace.measured.push_back(log.samples(C::kDeltaDes)[i]);
     trace.predicted.push_back(tracker.command(pose, t).delta_des);  // the excitation runs on log time

@@ -109,5 +109,58 @@ TEST(Replay, FitsALoggedTorqueDelayAtItsTrueValue) {
   EXPECT_LT(at_truth, mismatch(2.56e-3));
 }
 
+TEST(Replay, TrackerDelayFitOnANoisyPoseIsNotDrawnToHalfSampleOffsets) {
+  // A noise-only 500 Hz sinusoid log (2 ms samples): the tracker residual must be smallest at the true
+  // delay. Interpolated between noisy samples, the pose's noise was smallest midway between them: the
+  // residual was 0.039 at the true delay and 0.028 at +5 ms (2.5 samples), and the fitted extra
+  // sensing delay was 18.9 ms on every noise-only sinusoid of the benchmark.
+  const BenchmarkCase c = shortCase("none-1-sinusoid", 16.0);
+  const LogSignals log(generateBenchmarkLog(c, SensorNoise{}, 500.0));
+  const SimConfig nominal = benchmarkNominal(c.manoeuvre);
+  auto mismatch = [&](double extra) {
+    SimConfig config = nominal;
+    config.delays.pose_to_tracker += extra;
+    const std::vector<double> r = replayTracker(config, log, {{1.0, 16.0}}).traces.at(0).residual();
+    double s = 0.0;
+    for (double x : r) s += x * x;
+    return std::sqrt(s / r.size());
+  };
+  const double at_truth = mismatch(0.0);
+  for (double extra : {-0.005, -0.003, -0.001, 0.001, 0.003, 0.005}) EXPECT_LT(at_truth, mismatch(extra)) << extra;
+}
+
+TEST(LogSignals, NearestAlongSmoothedKeepsOneSamplesNoiseAndFollowsTheSignal) {
+  // A smooth signal comes out as interpolated; white noise keeps its variance midway between samples
+  // (linear interpolation halves it there).
+  GapLog g;
+  const int n = 4001;
+  for (int i = 0; i < n; ++i) {
+    const double t = 0.002 * i;
+    g.t.push_back(t);
+    g.x.push_back(15.0 * t);
+    g.y.push_back(std::sin(t));
+    g.psi.push_back(0.0);
+    g.yaw_rate.push_back(0.0);
+    g.delta.push_back(0.0);
+    g.delta_des.push_back(0.0);
+    g.torque.push_back(0.0);
+  }
+  GapLog noisy = g;
+  SensorNoise only_psi{0.0, 1e-3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0};
+  addSensorNoise(noisy, only_psi, 3);
+  const LogSignals clean(g), log(noisy);
+  double max_error = 0.0, midway = 0.0, at_samples = 0.0, interpolated = 0.0;
+  for (int i = 100; i + 100 < n; ++i) {
+    const double t = 0.002 * i + 0.001;  // midway
+    max_error = std::max(max_error, std::fabs(clean.nearestAlongSmoothed(LogSignals::kY, t) - std::sin(t)));
+    midway += std::pow(log.nearestAlongSmoothed(LogSignals::kPsi, t), 2);
+    at_samples += std::pow(log.nearestAlongSmoothed(LogSignals::kPsi, t - 0.001), 2);
+    interpolated += std::pow(log.at(LogSignals::kPsi, t), 2);
+  }
+  EXPECT_LT(max_error, 1e-6);  // (the interpolation of the smoothed curve: dt^2 / 8 |y''| = 5e-7)
+  EXPECT_NEAR(midway / at_samples, 1.0, 0.1);
+  EXPECT_NEAR(interpolated / at_samples, 0.5, 0.05);
+}
+
 }  // namespace
 }  // namespace lane_keeping
