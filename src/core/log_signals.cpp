@@ -77,6 +77,9 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   values_[kXSmoothed] = smoothedDerivative(t, log_.x, windows.pose, 0);
   values_[kYSmoothed] = smoothedDerivative(t, log_.y, windows.pose, 0);
   values_[kPsiSmoothed] = smoothedDerivative(t, log_.psi, windows.pose, 0);
+  values_[kDeltaSmoothed] = smoothedDerivative(t, log_.delta, windows.steering, 0);
+  values_[kDeltaRateSmoothed] =
+      log_.hasSteeringRate() ? smoothedDerivative(t, log_.delta_rate, windows.steering, 0) : values_[kDeltaRate];
   for (Channel c : {kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration}) {
     noise_[c] = fourthDifferenceNoise(values_[c]);
   }
@@ -87,6 +90,10 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   for (const auto& [smoothed, raw] : {std::pair{kXSmoothed, kX}, {kYSmoothed, kY}, {kPsiSmoothed, kPsi}}) {
     noise_[smoothed] = noise_[raw] * std::sqrt(9.0 / (4.0 * pose_samples));
   }
+  const double steering_samples = std::max(5.0, 2.0 * windows.steering / step + 1.0);
+  noise_[kDeltaSmoothed] = noise_[kDelta] * std::sqrt(9.0 / (4.0 * steering_samples));
+  noise_[kDeltaRateSmoothed] =
+      log_.hasSteeringRate() ? noise_[kDeltaRate] * std::sqrt(9.0 / (4.0 * steering_samples)) : noise_[kDeltaRate];
   auto derivativeNoise = [&](double sigma, double half_width) {
     const double n = std::max(5.0, 2.0 * half_width / step + 1.0);
     return sigma * std::sqrt(3.0 / (n * half_width * half_width));
@@ -132,6 +139,8 @@ double LogSignals::nearestAlongSmoothed(Channel c, double t) const {
     case kX: smoothed = kXSmoothed; break;
     case kY: smoothed = kYSmoothed; break;
     case kPsi: smoothed = kPsiSmoothed; break;
+    case kDelta: smoothed = kDeltaSmoothed; break;
+    case kDeltaRate: smoothed = kDeltaRateSmoothed; break;
     default: return at(c, t);
   }
   const auto& times = log_.t;
@@ -144,7 +153,7 @@ const char* LogSignals::name(Channel c) {
   static const char* names[] = {"x",         "y",          "psi",        "yaw_rate",     "delta",  "delta_des",
                                 "torque",    "v",          "ay",         "delta_rate",   "delta_acceleration",
                                 "delta_des_rate", "yaw_acceleration", "x_dot", "y_dot", "sigma1",
-                                "x_smoothed", "y_smoothed", "psi_smoothed"};
+                                "x_smoothed", "y_smoothed", "psi_smoothed", "delta_smoothed", "delta_rate_smoothed"};
   return names[c];
 }
 

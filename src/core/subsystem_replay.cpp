@@ -263,8 +263,11 @@ SubsystemReplay replayActuator(const SimConfig& config, const LogSignals& log, c
   for (std::size_t i = 0; i < times.size(); ++i) {
     const double t = times[i];
     if (t - lag < log.start()) continue;
-    const double e = log.at(C::kDeltaDes, t - tau_des) - log.at(C::kDelta, t - tau_meas);
-    const double e_rate = log.at(C::kDeltaDesRate, t - tau_des) - log.at(C::kDeltaRate, t - tau_meas);
+    // The measured angle and rate: nearest samples carried along their smoothed curves (interpolated
+    // 0.1 ms back, their noise was coloured and read as excess; LogSignals::nearestAlongSmoothed).
+    const double e = log.at(C::kDeltaDes, t - tau_des) - log.nearestAlongSmoothed(C::kDelta, t - tau_meas);
+    const double e_rate =
+        log.at(C::kDeltaDesRate, t - tau_des) - log.nearestAlongSmoothed(C::kDeltaRate, t - tau_meas);
     if (started) z += 0.5 * (t - previous_t) * (previous_e + e);
     started = true;
     previous_t = t;

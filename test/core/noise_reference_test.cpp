@@ -70,7 +70,11 @@ TEST(NoiseReference, AccountsForTheSteeringExcessOfANoEffectLog) {
   EXPECT_LT(reference, 1.6 * steering);
   double raw2 = 0.0;
   for (const auto& [name, excess] : with_reference.how_far.subsystems_before) raw2 += excess * excess;
-  EXPECT_LT(with_reference.verdict.gap_before, 0.7 * std::sqrt(raw2));
+  // The net gap drops the steering's excess and part of the others' (here 0.0151 against a raw 0.0213;
+  // the raw figure was 0.0285 while the actuator's interpolated inputs coloured its noise).
+  const double gap2 = with_reference.verdict.gap_before * with_reference.verdict.gap_before;
+  EXPECT_LT(gap2, raw2 - steering * steering);
+  EXPECT_LT(with_reference.verdict.gap_before, 0.8 * std::sqrt(raw2));
   EXPECT_EQ(with_reference.verdict.effect, "unexplained") << with_reference.verdict.reason;
 
   options.noise_reference_draws = 0;  // the raw excess

@@ -129,6 +129,19 @@ TEST(Replay, TrackerDelayFitOnANoisyPoseIsNotDrawnToHalfSampleOffsets) {
   for (double extra : {-0.005, -0.003, -0.001, 0.001, 0.003, 0.005}) EXPECT_LT(at_truth, mismatch(extra)) << extra;
 }
 
+TEST(Replay, ActuatorReplayOfANoiseOnlyLogLeavesNoExcess) {
+  // The actuator reads the measured angle and rate 0.1 ms back. Interpolated on a 1 kHz log that is
+  // 0.9 / 0.1 of two noisy samples: the residual's second differences then put its floor at 0.70 of its
+  // variance (nrmse^2 / floor^2 = 1.17 > the 1.1 tolerance), and noise read as a gap of ~0.02 that,
+  // on a 60 s column log, outweighed the steering's and placed the gap in the actuator.
+  const BenchmarkCase c = shortCase("none-1-lane_change", 10.0);
+  const LogSignals log(generateBenchmarkLog(c, SensorNoise{}, 1000.0));
+  const SubsystemScore s = scoreReplay(replayActuator(benchmarkNominal(c.manoeuvre), log, {{0.5, 10.0}}));
+  ASSERT_GT(s.floor, 0.0);
+  EXPECT_LT(s.nrmse * s.nrmse / (s.floor * s.floor), 1.05);
+  EXPECT_EQ(s.excess, 0.0);
+}
+
 TEST(LogSignals, NearestAlongSmoothedKeepsOneSamplesNoiseAndFollowsTheSignal) {
   // A smooth signal comes out as interpolated; white noise keeps its variance midway between samples
   // (linear interpolation halves it there).

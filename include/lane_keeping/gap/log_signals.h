@@ -5,7 +5,8 @@
 ///   steering rate  delta_dot  (the delta_rate column if present, else d/dt delta), delta_ddot,
 ///   desired rate   delta_des_dot,  yaw acceleration d/dt yaw_rate,
 ///   velocity of G  x_dot, y_dot,  and sigma1 = -x_dot sin(psi) + y_dot cos(psi) (row 2 of Beregi eq 1),
-///   and the pose x, y, psi smoothed by the same filter (value, zero lag), for nearestAlongSmoothed.
+///   and the pose x, y, psi and the steering angle and rate smoothed by the same filter (value, zero
+///   lag), for nearestAlongSmoothed.
 #include <string>
 #include <vector>
 
@@ -24,7 +25,7 @@ class LogSignals {
   enum Channel {
     kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration,
     kDeltaRate, kDeltaAcceleration, kDeltaDesRate, kYawAcceleration, kXDot, kYDot, kSigma1,
-    kXSmoothed, kYSmoothed, kPsiSmoothed, kChannels
+    kXSmoothed, kYSmoothed, kPsiSmoothed, kDeltaSmoothed, kDeltaRateSmoothed, kChannels
   };
 
   explicit LogSignals(GapLog log, const SmoothingWindows& windows = {});
@@ -37,13 +38,15 @@ class LogSignals {
   double at(Channel c, double t) const;
   /// Same, starting the search from `*hint` (updated): O(1) for the near-monotone queries of a replay.
   double at(Channel c, double t, std::size_t* hint) const;
-  /// The sample nearest to t, carried to t along the channel's smoothed curve (x, y, psi: kXSmoothed
-  /// ...; other channels: plain interpolation): the noise of one sample wherever t falls between two.
+  /// The sample nearest to t, carried to t along the channel's smoothed curve (x, y, psi, delta,
+  /// delta_rate; other channels: plain interpolation): the noise of one sample wherever t falls.
   /// Linear interpolation between white-noisy samples averages two of them, so its noise midway is
   /// 1 / sqrt(2) of a sample's, and a delay fitted through it drifts to half-sample offsets (the
   /// tracker replay fitted 18.9 ms of extra sensing delay on noise-only 500 Hz logs: its residual was
   /// 0.039 at the true delay and 0.028 2.5 samples away). Smoothing alone would fix that but colour
-  /// the residual, whose noise floor the scores estimate as white.
+  /// the residual, whose noise floor the scores estimate as white. (Interpolation colours it too: the
+  /// actuator replay's delta at t - 0.1 ms on a 1 kHz log is 0.9 / 0.1 of two samples, whose second
+  /// differences put the floor at 0.70 of the variance and left a noise "excess" of ~0.02.)
   double nearestAlongSmoothed(Channel c, double t) const;
   /// Values at the sample times.
   const std::vector<double>& samples(Channel c) const { return values_[c]; }
