@@ -1,8 +1,10 @@
 // Benchmark of the gap diagnosis (issue #5): wall time to diagnose a 60 s log sampled at 100 Hz and at
 // 1 kHz with all eleven candidates (held-out blocks, closed-loop replay included), on the threads given.
 // The logs are generated like the withheld-effect benchmark (steering friction hidden, sensor noise).
-//   lk_bench_gap [--threads N] [--duration S] [--rate HZ] [--effects a,b,...]
-// (--rate: one log rate instead of both; --effects: fit only these candidates, to time one of them.)
+//   lk_bench_gap [--threads N] [--duration S] [--rate HZ] [--effects a,b,...] [--case ID]
+// (--rate: one log rate instead of both; --effects: fit only these candidates, to time one of them;
+// --case: another benchmark case than steering_friction-large-lane_change, e.g. a column log whose
+// winning fit must be held to a bounded closed loop.)
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -20,23 +22,29 @@ int main(int argc, char** argv) {
   double duration = 60.0;
   std::vector<double> rates{100.0, 1000.0};
   std::vector<std::string> effects;
+  std::string case_id = "steering_friction-large-lane_change";
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string arg = argv[i];
     if (arg == "--threads") threads = std::atoi(argv[i + 1]);
     if (arg == "--duration") duration = std::atof(argv[i + 1]);
     if (arg == "--rate") rates = {std::atof(argv[i + 1])};
+    if (arg == "--case") case_id = argv[i + 1];
     if (arg == "--effects") {
       std::stringstream list(argv[i + 1]);
       for (std::string name; std::getline(list, name, ',');) effects.push_back(name);
     }
   }
-  std::printf("lane_keeping gap diagnosis benchmark: %g s log, %s, %d thread(s)\n\n", duration,
+  std::printf("lane_keeping gap diagnosis benchmark: %g s log of %s, %s, %d thread(s)\n\n", duration, case_id.c_str(),
               effects.empty() ? "all 11 candidates" : "selected candidates", threads);
   std::printf("%-10s %10s %14s %22s\n", "log rate", "rows", "wall time", "verdict");
   for (const double rate : rates) {
     BenchmarkCase c;
     for (const auto& candidate : benchmarkCases()) {
-      if (candidate.id == "steering_friction-large-lane_change") c = candidate;
+      if (candidate.id == case_id) c = candidate;
+    }
+    if (c.id.empty()) {
+      std::fprintf(stderr, "lk_bench_gap: no benchmark case '%s' (the ids are those of lk_gap_benchmark: DIR/cases.json)\n", case_id.c_str());
+      return 2;
     }
     c.truth_overlay.push_back("simulation.duration=" + std::to_string(duration));
     const GapLog log = generateBenchmarkLog(c, SensorNoise{}, rate);
@@ -52,6 +60,7 @@ int main(int argc, char** argv) {
     std::printf("           stages:");
     for (const auto& [stage, seconds] : report.wall_seconds) std::printf(" %s %.1f s;", stage.c_str(), seconds);
     std::printf("\n");
+    std::printf("           reason: %s\n", report.verdict.reason.c_str());
     for (const auto& note : report.notes) std::printf("           note: %s\n", note.c_str());
     std::fflush(stdout);
   }

@@ -57,9 +57,13 @@ SubsystemScore scoreReplay(const SubsystemReplay& replay) {
   return score;
 }
 
+double netExcess(const SubsystemScore& score) {
+  return std::sqrt(std::max(0.0, score.excess * score.excess - score.reference * score.reference));
+}
+
 double combinedGap(const std::vector<SubsystemScore>& scores) {
   double sum = 0.0;
-  for (const auto& s : scores) sum += std::max(0.0, s.excess * s.excess - s.reference * s.reference);
+  for (const auto& s : scores) sum += netExcess(s) * netExcess(s);
   return std::sqrt(sum);
 }
 

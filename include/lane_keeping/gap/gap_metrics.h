@@ -36,7 +36,9 @@ struct SubsystemScore {
 
 TraceScore scoreTrace(const ReplayTrace& trace);
 SubsystemScore scoreReplay(const SubsystemReplay& replay);
-/// sqrt(sum of max(0, excess^2 - reference^2)) over the given subsystems.
+/// sqrt(max(0, excess^2 - reference^2)): a subsystem's mismatch beyond what noise leaves through it.
+double netExcess(const SubsystemScore& score);
+/// sqrt(sum of netExcess^2) over the given subsystems.
 double combinedGap(const std::vector<SubsystemScore>& scores);
 
 }  // namespace lane_keeping
