@@ -229,10 +229,9 @@ struct CandidateFit {
   std::vector<double> theta, sigma;
   bool at_bound = false;  ///< a fitted parameter is pinned at a bound of its range
   std::string stability_note;  ///< set when the least-squares fit's closed loop leaves the logged bounds
-  /// Logs on which the least-squares fit's closed loop leaves the bounds (empty: it stays bounded, or
-  /// it has been fitted again under them: `bounded_refit`).
+  /// Logs on which the fit's closed loop leaves the bounds (empty: it stays bounded, also after a
+  /// bounded refit that succeeded).
   std::vector<BoundedLoopRequirement> unbounded_on;
-  bool bounded_refit = false;
   SimConfig corrected;
   double train_before = 0.0, train_after = 0.0;
   double heldout_before = 0.0, heldout_after = 0.0;
@@ -319,8 +318,7 @@ class CandidateObjective {
 
   /// The closed loop must stay bounded on these logs over these horizons, its steering angle within
   /// `max_steering_angle` and its torque command within `max_torque`.
-  using StabilityRequirement = BoundedLoopRequirement;
-  void requireStability(std::vector<StabilityRequirement> requirements) { stable_on_ = std::move(requirements); }
+  void requireStability(std::vector<BoundedLoopRequirement> requirements) { stable_on_ = std::move(requirements); }
 
  private:
   static constexpr double kUnstableLoss = 1e100;
@@ -333,7 +331,7 @@ class CandidateObjective {
   /// 0 if the closed loop of `c` stays bounded on every required log, else 1 - (time it took to
   /// diverge) / horizon, in (0, 1].
   double divergence(const SimConfig& c) const {
-    for (const StabilityRequirement& s : stable_on_) {
+    for (const BoundedLoopRequirement& s : stable_on_) {
       const LoopDivergence d =
           closedLoopDivergence(withSteeringBound(c, s.max_steering_angle), *s.log, kNaN, s.horizon, s.max_torque);
       if (d.diverged) return std::clamp(1.0 - d.time / s.horizon, 1e-6, 1.0);
@@ -341,7 +339,7 @@ class CandidateObjective {
     return 0.0;
   }
 
-  std::vector<StabilityRequirement> stable_on_;
+  std::vector<BoundedLoopRequirement> stable_on_;
   const CandidateEffect& effect_;
   const SimConfig& nominal_;
   const std::vector<Dataset>& data_;
@@ -442,15 +440,14 @@ std::vector<double> coordinateFit(const CandidateObjective& objective, std::vect
 /// the log's 30 s, under the monitor's 1.2 rad; one at 0.05 1/s reached 480 N m (logged: 35 N m).
 /// Returns the training logs on which the closed loop of theta leaves those bounds where the nominal's
 /// does not (empty: theta is consistent with the logs), and says so in `note`.
-std::vector<CandidateObjective::StabilityRequirement> stabilityRequirements(const CandidateObjective& objective,
-                                                                            const std::vector<double>& theta,
-                                                                            const std::vector<Dataset>& train,
-                                                                            const SimConfig& nominal, std::string* note) {
+std::vector<BoundedLoopRequirement> stabilityRequirements(const CandidateObjective& objective, const std::vector<double>& theta,
+                                                          const std::vector<Dataset>& train, const SimConfig& nominal,
+                                                          std::string* note) {
   std::vector<const LogSignals*> logs;
   for (const Dataset& d : train) {
     if (std::find(logs.begin(), logs.end(), d.log.get()) == logs.end()) logs.push_back(d.log.get());
   }
-  std::vector<CandidateObjective::StabilityRequirement> requirements;
+  std::vector<BoundedLoopRequirement> requirements;
   for (const LogSignals* log : logs) {
     const double span = log->end() - log->start();
     double logged_angle = 0.0, logged_torque = 0.0;
@@ -474,9 +471,9 @@ std::vector<CandidateObjective::StabilityRequirement> stabilityRequirements(cons
 }
 
 /// Fits again from theta with the closed loop required to stay bounded on `requirements` (see
-/// stabilityRequirements); *bounded says whether the result does.
+/// stabilityRequirements); *bounded_fit says whether the result does.
 std::vector<double> holdStable(CandidateObjective& objective, std::vector<double> theta,
-                               const std::vector<CandidateObjective::StabilityRequirement>& requirements,
+                               const std::vector<BoundedLoopRequirement>& requirements,
                                std::string* note, bool* bounded_fit) {
   *bounded_fit = true;
   if (requirements.empty()) return theta;
@@ -486,7 +483,7 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
   constexpr double kSearchHorizon = 10.0;
   auto shortened = requirements;
   for (auto& r : shortened) r.horizon = std::min(r.horizon, kSearchHorizon);
-  auto search = [&](const std::vector<CandidateObjective::StabilityRequirement>& required, std::vector<double> start) {
+  auto search = [&](const std::vector<BoundedLoopRequirement>& required, std::vector<double> start) {
     objective.requireStability(required);
     // First move: the one parameter whose change alone best restores a bounded loop. (Sweeping the
     // parameters in order would move the first however badly while the loop still diverges: a column's
@@ -664,7 +661,6 @@ void refitBounded(const SimConfig& nominal, const std::vector<Dataset>& train, c
     return;
   }
   if (bounded) fit->unbounded_on.clear();
-  fit->bounded_refit = true;
   scoreFit(objective, theta, train, heldout, nominal_train, nominal_heldout, options, fit);
 }
 
