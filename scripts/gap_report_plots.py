@@ -38,7 +38,7 @@ winning effect added (corrected columns all NaN, or absent, when the verdict is 
 
 report.json -- the report (src/core/gap_report.cpp documents the layout). Used here: where.subsystem,
     where.subsystems[].name/nrmse, where.windows[] (t0, t1, share; largest first), where.bands[] (f0, f1,
-    share), ranking[] (effect, heldout_gap_before, heldout_gap_after, shrink), verdict (effect, confidence,
+    share), ranking[] (effect, heldout_gap_before, heldout_gap_after, shrink, closed_loop_bounded), verdict (effect, confidence,
     shrink), how_far (before, after). null means "not a number". Without report.json the plots are still
     drawn, without windows, bands and nrmse annotations; ranking.png needs it.
 
@@ -47,7 +47,8 @@ Outputs (in DIR)
 residuals.png  one panel per subsystem, residual vs time, the top 5 windows of report.json shaded with their share
 spectrum.png   left: PSD per subsystem (log-log) with the bands shaded; right: bar chart of the band shares
 overlay.png    y, yaw rate, delta: real vs nominal vs corrected on the held-out data
-ranking.png    held-out gap before/after per candidate effect (bars), shrink annotated, verdict highlighted
+ranking.png    held-out gap before/after per candidate effect (bars), shrink annotated, verdict highlighted,
+               fits that make the logged closed loop unbounded hatched
 
 A missing or unreadable input skips its plot with a message on stderr; other plots are still drawn.
 Exit status: 0 when every plot was drawn or skipped for a missing input, 1 if a plot failed on malformed
@@ -65,6 +66,7 @@ try:
     import matplotlib
 
     matplotlib.use("Agg")
+    import matplotlib.patches
     import matplotlib.pyplot as plt
 except ImportError as error:  # the pyenv python3 on PATH lacks them
     sys.stderr.write("gap_report_plots: %s; run with /usr/bin/python3 (Debian's numpy + matplotlib)\n" % error)
@@ -313,25 +315,37 @@ def plot_ranking(directory, report, dpi):
     before = np.array([number(e.get("heldout_gap_before")) for e in ranking])
     after = np.array([number(e.get("heldout_gap_after")) for e in ranking])
     shrink = [number(e.get("shrink")) for e in ranking]
+    # A fit whose closed loop leaves the logged bounds cannot be the cause (report.json, optional key).
+    unbounded = [e.get("closed_loop_bounded", True) is False for e in ranking]
     y = np.arange(len(ranking))[::-1]  # best (first) at the top
     height = 0.38
     fig, ax = plt.subplots(figsize=(10, 1.0 + 0.45 * len(ranking)), constrained_layout=True)
     ax.barh(y + height / 2, np.nan_to_num(before, nan=0.0), height, color="lightgray", edgecolor="gray",
             label="nominal (before)")
-    colours = ["tab:green" if n == verdict.get("effect") else "tab:blue" for n in names]
-    ax.barh(y - height / 2, np.nan_to_num(after, nan=0.0), height, color=colours, label="with the effect (after)")
+    colours = ["tab:green" if n == verdict.get("effect") else ("white" if u else "tab:blue")
+               for n, u in zip(names, unbounded)]
+    bars = ax.barh(y - height / 2, np.nan_to_num(after, nan=0.0), height, color=colours, edgecolor="tab:blue",
+                   label="with the effect (after)")
+    for bar, u in zip(bars, unbounded):
+        if u:
+            bar.set_hatch("//")
     finite = np.concatenate([before[np.isfinite(before)], after[np.isfinite(after)]])
     top = float(finite.max()) if finite.size else 1.0
-    for yi, b, a, s in zip(y, before, after, shrink):
+    for yi, b, a, s, u in zip(y, before, after, shrink, unbounded):
         ax.annotate("shrink %s" % percent(s) if math.isfinite(a) else "n/a",
                     xy=(max(a if math.isfinite(a) else 0.0, 0.0) + 0.01 * top, yi - height / 2),
                     va="center", fontsize=8)
     ax.set_yticks(y)
-    ax.set_yticklabels(["%s ★" % n if n == verdict.get("effect") else n for n in names])
+    ax.set_yticklabels(["%s ★" % n if n == verdict.get("effect") else (n + " (unbounded)" if u else n)
+                        for n, u in zip(names, unbounded)])
     ax.set_xlim(0, top * 1.25 if top > 0 else 1.0)
     ax.set_xlabel("held-out gap (normalised) [-]")
     ax.grid(True, axis="x", alpha=0.3)
-    ax.legend(fontsize=8, loc="lower right")
+    handles, _ = ax.get_legend_handles_labels()
+    if any(unbounded):
+        handles.append(matplotlib.patches.Patch(facecolor="white", edgecolor="tab:blue", hatch="//",
+                                                label="fit makes the logged closed loop unbounded: not a cause"))
+    ax.legend(handles=handles, fontsize=8, loc="upper center", bbox_to_anchor=(0.5, -0.1), ncol=3)
     confidence = number(verdict.get("confidence"))
     ax.set_title("Candidate effects on held-out data — verdict: %s (confidence %s)"
                  % (verdict.get("effect", "?"), "n/a" if not math.isfinite(confidence) else "%.2f" % confidence),
@@ -403,6 +417,8 @@ def write_example(directory):
              "heldout_gap_after": 0.17, "shrink": 1 - 0.17 / 0.3},
             {"effect": "cornering_stiffness", "params": {"scale": 0.9}, "heldout_gap_before": 0.3,
              "heldout_gap_after": 0.27, "shrink": 0.1},
+            {"effect": "steering_compliance", "params": {"stiffness": 5e5}, "heldout_gap_before": 0.3,
+             "heldout_gap_after": 0.2, "shrink": 1 - 0.2 / 0.3, "closed_loop_bounded": False},
             {"effect": "pose_bias", "params": {}, "heldout_gap_before": 0.3, "heldout_gap_after": None,
              "shrink": None},
         ],

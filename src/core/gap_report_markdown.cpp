@@ -227,7 +227,7 @@ void writeData(std::ostream& out, const GapReport& r) {
   }
   if (!r.wall_seconds.empty()) {
     out << "\nWall time per stage:";
-    for (const auto& [stage, seconds] : r.wall_seconds) out << " " << stage << " " << num(seconds) << " s;";
+    for (const auto& [stage, seconds] : r.wall_seconds) out << " " << stage << " " << num(seconds, "%.1f") << " s;";
     out << "\n";
   }
   out << "\n";
