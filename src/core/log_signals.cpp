@@ -38,6 +38,42 @@ std::vector<double> smoothedDerivative(const std::vector<double>& t, const std::
   return out;
 }
 
+std::vector<double> splineDerivative(const std::vector<double>& t, const std::vector<double>& y) {
+  const std::size_t n = t.size();
+  std::vector<double> out(n, 0.0);
+  if (n < 2) return out;
+  if (n == 2) {
+    out[0] = out[1] = (y[1] - y[0]) / (t[1] - t[0]);
+    return out;
+  }
+  // Second derivatives M_i of the natural spline (M_0 = M_{n-1} = 0): for i = 1 .. n-2,
+  // h_{i-1} M_{i-1} + 2 (h_{i-1} + h_i) M_i + h_i M_{i+1} = 6 (slope_i - slope_{i-1}); Thomas algorithm.
+  std::vector<double> h(n - 1), slope(n - 1);
+  for (std::size_t i = 0; i + 1 < n; ++i) {
+    h[i] = t[i + 1] - t[i];
+    slope[i] = (y[i + 1] - y[i]) / h[i];
+  }
+  std::vector<double> diag(n, 1.0), upper(n, 0.0), rhs(n, 0.0), m(n, 0.0);
+  for (std::size_t i = 1; i + 1 < n; ++i) {
+    const double lower = h[i - 1];
+    diag[i] = 2.0 * (h[i - 1] + h[i]);
+    upper[i] = h[i];
+    rhs[i] = 6.0 * (slope[i] - slope[i - 1]);
+    if (i > 1) {  // eliminate the sub-diagonal with the previous (already reduced) row
+      const double w = lower / diag[i - 1];
+      diag[i] -= w * upper[i - 1];
+      rhs[i] -= w * rhs[i - 1];
+    }
+  }
+  for (std::size_t i = n - 2; i >= 1; --i) {
+    m[i] = (rhs[i] - upper[i] * m[i + 1]) / diag[i];
+    if (i == 1) break;
+  }
+  for (std::size_t i = 0; i + 1 < n; ++i) out[i] = slope[i] - h[i] * (2.0 * m[i] + m[i + 1]) / 6.0;
+  out[n - 1] = slope[n - 2] + h[n - 2] * (m[n - 2] + 2.0 * m[n - 1]) / 6.0;
+  return out;
+}
+
 double fourthDifferenceNoise(const std::vector<double>& v) {
   if (v.size() < 8) return 0.0;
   double sum = 0.0;
@@ -63,10 +99,9 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   values_[kDeltaRate] =
       log_.hasSteeringRate() ? log_.delta_rate : smoothedDerivative(t, log_.delta, windows.steering, 1);
   values_[kDeltaAcceleration] = smoothedDerivative(t, values_[kDeltaRate], windows.steering, 1);
-  // delta_des is computed by the tracker, not measured: a short window (2.5 samples) keeps test-signal
-  // content of a few tens of Hz instead of averaging it away.
-  const double step0 = t.size() > 1 ? (t.back() - t.front()) / (t.size() - 1) : 0.01;
-  values_[kDeltaDesRate] = smoothedDerivative(t, log_.delta_des, std::min(windows.steering, 2.5 * step0), 1);
+  // delta_des is computed by the tracker, not measured: differentiated through a spline, not smoothed,
+  // so that the identification excitation's top frequencies keep their rate (splineDerivative).
+  values_[kDeltaDesRate] = splineDerivative(t, log_.delta_des);
   values_[kYawAcceleration] = smoothedDerivative(t, log_.yaw_rate, windows.steering, 1);
   values_[kXDot] = smoothedDerivative(t, log_.x, windows.position, 1);
   values_[kYDot] = smoothedDerivative(t, log_.y, windows.position, 1);
