@@ -258,11 +258,12 @@ double evidenceOf(const std::map<std::string, SubsystemScore>& before, const std
   return evidence;
 }
 
-/// `config` with its divergence monitor's steering-angle limit lowered to `bound`.
-SimConfig withSteeringBound(SimConfig config, double bound) {
+/// Whether the closed loop of `config` leaves requirement `r`'s bounds on its log: the divergence
+/// monitor with its steering-angle limit lowered to r.max_steering_angle, and the torque command.
+LoopDivergence boundsCheck(SimConfig config, const BoundedLoopRequirement& r) {
   double& limit = config.simulation.divergence.max_steering_angle;
-  limit = std::min(limit, bound);
-  return config;
+  limit = std::min(limit, r.max_steering_angle);
+  return closedLoopDivergence(config, *r.log, kNaN, r.horizon, r.max_torque);
 }
 
 /// The loss of one candidate as a function of its (transformed) parameters.
@@ -332,8 +333,7 @@ class CandidateObjective {
   /// diverge) / horizon, in (0, 1].
   double divergence(const SimConfig& c) const {
     for (const BoundedLoopRequirement& s : stable_on_) {
-      const LoopDivergence d =
-          closedLoopDivergence(withSteeringBound(c, s.max_steering_angle), *s.log, kNaN, s.horizon, s.max_torque);
+      const LoopDivergence d = boundsCheck(c, s);
       if (d.diverged) return std::clamp(1.0 - d.time / s.horizon, 1e-6, 1.0);
     }
     return 0.0;
@@ -453,11 +453,10 @@ std::vector<BoundedLoopRequirement> stabilityRequirements(const CandidateObjecti
     double logged_angle = 0.0, logged_torque = 0.0;
     for (double delta : log->samples(LogSignals::kDelta)) logged_angle = std::max(logged_angle, std::fabs(delta));
     for (double torque : log->samples(LogSignals::kTorque)) logged_torque = std::max(logged_torque, std::fabs(torque));
-    const double angle = 1.5 * logged_angle + 0.02, torque = 2.0 * logged_torque + 5.0;
-    const LoopDivergence d =
-        closedLoopDivergence(withSteeringBound(objective.configFor(theta), angle), *log, kNaN, span, torque);
-    if (!d.diverged || closedLoopDivergence(withSteeringBound(nominal, angle), *log, kNaN, span, torque).diverged) continue;
-    requirements.push_back({log, span, angle, torque});
+    const BoundedLoopRequirement required{log, span, 1.5 * logged_angle + 0.02, 2.0 * logged_torque + 5.0};
+    const LoopDivergence d = boundsCheck(objective.configFor(theta), required);
+    if (!d.diverged || boundsCheck(nominal, required).diverged) continue;
+    requirements.push_back(required);
     if (!note->empty()) continue;
     std::ostringstream os;
     os << "the least-squares fit (";
@@ -504,11 +503,7 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
   };
   auto bounded = [&](const std::vector<double>& t) {
     for (const auto& r : requirements) {
-      if (closedLoopDivergence(withSteeringBound(objective.configFor(t), r.max_steering_angle), *r.log, kNaN, r.horizon,
-                               r.max_torque)
-              .diverged) {
-        return false;
-      }
+      if (boundsCheck(objective.configFor(t), r).diverged) return false;
     }
     return true;
   };
@@ -664,7 +659,6 @@ void refitBounded(const SimConfig& nominal, const std::vector<Dataset>& train, c
   scoreFit(objective, theta, train, heldout, nominal_train, nominal_heldout, options, fit);
 }
 
-
 // ================================================================================================
 // Where: windows, bands, regimes
 // ================================================================================================
@@ -763,10 +757,9 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, c
     g.noise_floor = it->second.floor;
     for (const auto& t : it->second.traces) g.outputs.push_back(t.name);
     where.subsystems.push_back(g);
-    // Ranked by the excess beyond the noise-only reference: the actuator replay's noise alone shows an
-    // excess of ~0.02 on 1 kHz logs (its inputs are interpolated 0.1 ms back), more than a column's
-    // steering gap; ranked by raw excess, a 60 s column log was placed in the actuator, which no
-    // candidate changes, and judged unexplained.
+    // Ranked by the excess beyond the noise-only reference: what noise alone leaves in a replay is not
+    // a gap (ranked by raw excess, a 60 s, 1 kHz column log whose actuator noise excess matched its
+    // reference was placed in the actuator, which no candidate changes, and judged unexplained).
     if (netExcess(it->second) > best) {
       best = netExcess(it->second);
       where.subsystem = name;

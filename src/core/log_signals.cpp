@@ -85,7 +85,7 @@ double fourthDifferenceNoise(const std::vector<double>& v) {
 }
 
 LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
-    : log_(std::move(log)), values_(kChannels), noise_(kChannels, 0.0) {
+    : log_(std::move(log)), values_(kChannels), smoothed_(kChannels), noise_(kChannels, 0.0) {
   const auto& t = log_.t;
   values_[kX] = log_.x;
   values_[kY] = log_.y;
@@ -109,26 +109,17 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   for (std::size_t i = 0; i < t.size(); ++i) {
     values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
   }
-  values_[kXSmoothed] = smoothedDerivative(t, log_.x, windows.pose, 0);
-  values_[kYSmoothed] = smoothedDerivative(t, log_.y, windows.pose, 0);
-  values_[kPsiSmoothed] = smoothedDerivative(t, log_.psi, windows.pose, 0);
-  values_[kDeltaSmoothed] = smoothedDerivative(t, log_.delta, windows.steering, 0);
-  values_[kDeltaRateSmoothed] =
+  smoothed_[kX] = smoothedDerivative(t, log_.x, windows.pose, 0);
+  smoothed_[kY] = smoothedDerivative(t, log_.y, windows.pose, 0);
+  smoothed_[kPsi] = smoothedDerivative(t, log_.psi, windows.pose, 0);
+  smoothed_[kDelta] = smoothedDerivative(t, log_.delta, windows.steering, 0);
+  smoothed_[kDeltaRate] =
       log_.hasSteeringRate() ? smoothedDerivative(t, log_.delta_rate, windows.steering, 0) : values_[kDeltaRate];
   for (Channel c : {kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration}) {
     noise_[c] = fourthDifferenceNoise(values_[c]);
   }
   double step = log_.medianStep();
   if (!(step > 0.0)) step = 0.01;
-  // The centre value of a local quadratic over n samples keeps ~ 9 / (4 n) of the noise variance.
-  const double pose_samples = std::max(5.0, 2.0 * windows.pose / step + 1.0);
-  for (const auto& [smoothed, raw] : {std::pair{kXSmoothed, kX}, {kYSmoothed, kY}, {kPsiSmoothed, kPsi}}) {
-    noise_[smoothed] = noise_[raw] * std::sqrt(9.0 / (4.0 * pose_samples));
-  }
-  const double steering_samples = std::max(5.0, 2.0 * windows.steering / step + 1.0);
-  noise_[kDeltaSmoothed] = noise_[kDelta] * std::sqrt(9.0 / (4.0 * steering_samples));
-  noise_[kDeltaRateSmoothed] =
-      log_.hasSteeringRate() ? noise_[kDeltaRate] * std::sqrt(9.0 / (4.0 * steering_samples)) : noise_[kDeltaRate];
   auto derivativeNoise = [&](double sigma, double half_width) {
     const double n = std::max(5.0, 2.0 * half_width / step + 1.0);
     return sigma * std::sqrt(3.0 / (n * half_width * half_width));
@@ -169,26 +160,22 @@ double LogSignals::at(Channel c, double t, std::size_t* hint) const {
 }
 
 double LogSignals::nearestAlongSmoothed(Channel c, double t) const {
-  Channel smoothed;
-  switch (c) {
-    case kX: smoothed = kXSmoothed; break;
-    case kY: smoothed = kYSmoothed; break;
-    case kPsi: smoothed = kPsiSmoothed; break;
-    case kDelta: smoothed = kDeltaSmoothed; break;
-    case kDeltaRate: smoothed = kDeltaRateSmoothed; break;
-    default: return at(c, t);
-  }
+  const auto& smoothed = smoothed_[c];
+  if (smoothed.empty()) return at(c, t);
   const auto& times = log_.t;
-  std::size_t j = indexAtOrBefore(t);
-  if (j + 1 < times.size() && t - times[j] > times[j + 1] - t) ++j;
-  return values_[c][j] + (at(smoothed, t) - values_[smoothed][j]);
+  if (t <= times.front()) return values_[c].front();
+  if (t >= times.back()) return values_[c].back();
+  const std::size_t i = indexAtOrBefore(t);
+  const double w = (t - times[i]) / (times[i + 1] - times[i]);
+  const std::size_t j = w > 0.5 ? i + 1 : i;  // the nearest sample
+  const double along = smoothed[i] + w * (smoothed[i + 1] - smoothed[i]);
+  return values_[c][j] + (along - smoothed[j]);
 }
 
 const char* LogSignals::name(Channel c) {
   static const char* names[] = {"x",         "y",          "psi",        "yaw_rate",     "delta",  "delta_des",
                                 "torque",    "v",          "ay",         "delta_rate",   "delta_acceleration",
-                                "delta_des_rate", "yaw_acceleration", "x_dot", "y_dot", "sigma1",
-                                "x_smoothed", "y_smoothed", "psi_smoothed", "delta_smoothed", "delta_rate_smoothed"};
+                                "delta_des_rate", "yaw_acceleration", "x_dot", "y_dot", "sigma1"};
   return names[c];
 }
 

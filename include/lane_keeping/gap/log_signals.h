@@ -6,8 +6,8 @@
 ///   desired rate   delta_des_dot (the derivative of a cubic spline through delta_des: computed by the
 ///                  tracker, not measured, so it is not smoothed), yaw acceleration d/dt yaw_rate,
 ///   velocity of G  x_dot, y_dot,  and sigma1 = -x_dot sin(psi) + y_dot cos(psi) (row 2 of Beregi eq 1),
-///   and the pose x, y, psi and the steering angle and rate smoothed by the same filter (value, zero
-///   lag), for nearestAlongSmoothed.
+///   and, kept for nearestAlongSmoothed only, the pose x, y, psi and the steering angle and rate
+///   smoothed by the same filter (value, zero lag).
 #include <string>
 #include <vector>
 
@@ -25,8 +25,7 @@ class LogSignals {
  public:
   enum Channel {
     kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration,
-    kDeltaRate, kDeltaAcceleration, kDeltaDesRate, kYawAcceleration, kXDot, kYDot, kSigma1,
-    kXSmoothed, kYSmoothed, kPsiSmoothed, kDeltaSmoothed, kDeltaRateSmoothed, kChannels
+    kDeltaRate, kDeltaAcceleration, kDeltaDesRate, kYawAcceleration, kXDot, kYDot, kSigma1, kChannels
   };
 
   explicit LogSignals(GapLog log, const SmoothingWindows& windows = {});
@@ -66,6 +65,7 @@ class LogSignals {
  private:
   GapLog log_;
   std::vector<std::vector<double>> values_;
+  std::vector<std::vector<double>> smoothed_;  ///< per channel; empty where nearestAlongSmoothed interpolates
   std::vector<double> noise_;
 };
 
