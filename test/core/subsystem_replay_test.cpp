@@ -67,6 +67,16 @@ TEST(Replay, ProgressiveColumnReproducesTheLog) {
             0.01);
 }
 
+TEST(Replay, LugreKingpinFrictionReproducesTheLog) {
+  // The benchmark's large steering-friction truth (Deur eq 9, sigma0 = 2e4 N m/rad). The bristle state
+  // relaxes at sigma0 |delta_dot| / g, 1.3e4 1/s at 1 rad/s: with the step sized by the bristle
+  // oscillation alone (sqrt(sigma0 / J_F) = 283 rad/s, so the 2 ms step) RK4 blew up (mismatch ~3e3).
+  EXPECT_LT(steeringMismatch({"steering.friction_model=lugre", "steering.coulomb_friction=4",
+                              "steering.breakaway_friction=6", "steering.friction_velocity=0.02",
+                              "steering.friction_stiffness=2e4"}),
+            0.01);
+}
+
 TEST(Replay, DistributedTreadWithCarcassLagReproducesTheLog) {
   // The benchmark's large tire-lag truth (Deur's distributed tread, 40 bristles, plus 0.6 m carcass
   // relaxation), replayed with itself: the chassis and steering replays step below the transport time
