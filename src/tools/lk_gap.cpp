@@ -28,7 +28,7 @@ void usage(std::ostream& out) {
          "  --log      a log of a real run (CSV with DESIGN §5 columns, or a bag of the suite's topics)\n"
          "  --holdout  held-out runs for scoring; without them, alternate 3 s blocks of the logs are held out\n"
          "  --report   output directory: report.json, report.md, *.csv, *.png\n"
-         "  --noise-reference-draws N   noise draws of the noise-only reference the gap is net of\n"
+         "  --noise-reference-draws N   noise draws of the noise-only reference (the gap is net of the largest)\n"
          "             (default 3; 0 = raw excess, no reference)\n";
 }
 

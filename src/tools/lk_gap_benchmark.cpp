@@ -2,16 +2,21 @@
 //   lk_gap_benchmark run      --out DIR [--cases SUBSTRING] [--threads N]   generate + diagnose + score
 //   lk_gap_benchmark generate --out DIR [--cases SUBSTRING] [--log-rate HZ]
 //   lk_gap_benchmark diagnose --dir DIR [--cases SUBSTRING] [--threads N]
+//   lk_gap_benchmark ceiling  --dir DIR [--cases SUBSTRING] [--threads N]
 //   lk_gap_benchmark score    --dir DIR
 // `generate` writes DIR/logs/<case>.csv, DIR/nominal/<manoeuvre>.yaml, DIR/cases.json (case id,
 // manoeuvre, log file: no truth) and DIR/truth.json (the hidden effects). `diagnose` reads only
 // cases.json, the logs and the nominal configurations, and writes DIR/reports/<case>/report.json.
-// `score` compares the verdicts with truth.json and prints the confusion matrix, top-1 accuracy,
+// `ceiling` (after the diagnosis, with the truth) scores each log's truth configuration as the
+// diagnosis scores a candidate and writes DIR/reports/<case>/ceiling.json: the shrink a perfect
+// candidate would reach, which replay limits and noise keep below 100 %. `score` compares the verdicts with truth.json and prints the confusion matrix, top-1 accuracy,
 // median held-out shrink when right, false alarms on no-effect logs and the out-of-list verdicts.
 #include <sys/stat.h>
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -104,14 +109,64 @@ void diagnose(const std::string& dir, const std::string& filter, int threads) {
   }
 }
 
+BenchmarkCase caseFromTruth(const json& t) {
+  BenchmarkCase c;
+  c.id = t["id"];
+  c.category = t["category"];
+  c.truth = t["truth"];
+  c.magnitude = t["magnitude"];
+  c.manoeuvre = t["manoeuvre"];
+  c.truth_overlay = t["overlay"].get<std::vector<std::string>>();
+  c.seed = t["seed"];
+  return c;
+}
+
+void ceiling(const std::string& dir, const std::string& filter, int threads) {
+  const json truth = readJson(dir + "/truth.json");
+  const json cases = readJson(dir + "/cases.json");
+  std::map<std::string, std::string> log_files;
+  for (const auto& c : cases) log_files[c["id"]] = c["log"];
+  for (const auto& t : truth) {
+    const BenchmarkCase c = caseFromTruth(t);
+    if ((!filter.empty() && c.id.find(filter) == std::string::npos) || c.category == "none") continue;
+    const auto start = std::chrono::steady_clock::now();
+    const SimConfig nominal = loadSimConfig({dir + "/nominal/" + c.manoeuvre + ".yaml"});
+    const GapLog log = readCsvLog(dir + "/" + log_files.at(c.id));
+    DiagnosisOptions options;
+    options.threads = threads;
+    const std::vector<double> gaps = heldoutGaps(nominal, {benchmarkTruth(c)}, {log}, {}, options);
+    const double shrink = gaps[0] > 0.0 ? 1.0 - gaps[1] / gaps[0] : 0.0;
+    makeDir(dir + "/reports/" + c.id);
+    writeJson(dir + "/reports/" + c.id + "/ceiling.json",
+              {{"gap_before", gaps[0]}, {"truth_gap_after", gaps[1]}, {"truth_shrink", shrink}});
+    std::fprintf(stderr, "[ceiling]  %-44s truth model shrink %6.1f %%  %.1f s\n", c.id.c_str(), 100.0 * shrink,
+                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  }
+}
+
+/// The truth model's shrink on a log (ceiling.json), or NaN if `ceiling` has not run.
+double truthShrink(const std::string& dir, const std::string& id) {
+  std::ifstream in(dir + "/reports/" + id + "/ceiling.json");
+  if (!in) return std::numeric_limits<double>::quiet_NaN();
+  return json::parse(in)["truth_shrink"].get<double>();
+}
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  // With an even count the median is the mean of the two middle values (the upper one alone read
+  // 79.1 % where the median is 78.9 %).
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : (n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
+}
+
 int score(const std::string& dir) {
   const json truth = readJson(dir + "/truth.json");
   std::vector<std::string> labels = candidateEffectNames();
   labels.push_back("unexplained");
   std::map<std::string, std::map<std::string, int>> confusion;
   int in_list = 0, correct = 0, none = 0, false_alarms = 0;
-  std::vector<double> shrinks;
-  std::vector<std::string> out_of_list;
+  std::vector<double> shrinks, ceilings;
+  std::vector<std::string> out_of_list, per_log;
   std::vector<std::string> misses;
   for (const auto& t : truth) {
     const std::string id = t["id"];
@@ -125,9 +180,15 @@ int score(const std::string& dir) {
     if (category == "in_list") {
       ++in_list;
       confusion[effect][verdict]++;
+      const double ceiling = truthShrink(dir, id);
+      char line[256];
+      std::snprintf(line, sizeof(line), "  %-40s -> %-20s shrink %5.1f %%  truth model %5.1f %%", id.c_str(),
+                    verdict.c_str(), 100.0 * r.verdict.shrink, 100.0 * ceiling);
+      per_log.push_back(line);
       if (verdict == effect) {
         ++correct;
         shrinks.push_back(r.verdict.shrink);
+        if (std::isfinite(ceiling)) ceilings.push_back(ceiling);
       } else {
         misses.push_back(id + " -> " + verdict);
       }
@@ -161,16 +222,17 @@ int score(const std::string& dir) {
   std::printf("columns: ");
   for (std::size_t j = 0; j < labels.size(); ++j) std::printf("%zu=%s ", j + 1, labels[j].c_str());
   std::printf("\n\n");
-  std::sort(shrinks.begin(), shrinks.end());
-  // With an even count the median is the mean of the two middle values (the upper one alone read
-  // 79.1 % where the median is 78.9 %).
-  const std::size_t n = shrinks.size();
-  const double median = n == 0 ? 0.0 : (n % 2 == 1 ? shrinks[n / 2] : 0.5 * (shrinks[n / 2 - 1] + shrinks[n / 2]));
   std::printf("top-1 accuracy (in-list effects):      %d / %d = %.1f %%   (target >= 90 %%)\n", correct, in_list,
               in_list ? 100.0 * correct / in_list : 0.0);
-  std::printf("median held-out shrink when right:     %.1f %%   (target >= 80 %%)\n", 100.0 * median);
+  std::printf("median held-out shrink when right:     %.1f %%   (target >= 80 %%)\n", 100.0 * median(shrinks));
+  if (!ceilings.empty()) {
+    std::printf("  the truth model's own, same logs:    %.1f %%   (the ceiling: replay limits and noise)\n",
+                100.0 * median(ceilings));
+  }
   std::printf("no-effect logs judged unexplained:     %d / %d = %.1f %%   (target >= 90 %%)\n", none - false_alarms, none,
               none ? 100.0 * (none - false_alarms) / none : 0.0);
+  std::printf("\nIn-list logs (verdict, its held-out shrink, the truth model's on the same log):\n");
+  for (const auto& line : per_log) std::printf("%s\n", line.c_str());
   std::printf("\nOut-of-list effects:\n");
   for (const auto& line : out_of_list) std::printf("%s\n", line.c_str());
   if (!misses.empty()) {
@@ -184,7 +246,7 @@ int score(const std::string& dir) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << "usage: lk_gap_benchmark run|generate|diagnose|score --out/--dir DIR [--cases SUBSTRING] [--threads N]\n";
+    std::cerr << "usage: lk_gap_benchmark run|generate|diagnose|ceiling|score --out/--dir DIR [--cases SUBSTRING] [--threads N]\n";
     return 2;
   }
   const std::string command = argv[1];
@@ -209,8 +271,9 @@ int main(int argc, char** argv) {
   try {
     if (command == "generate" || command == "run") generate(dir, filter, log_rate);
     if (command == "diagnose" || command == "run") diagnose(dir, filter, threads);
+    if (command == "ceiling" || command == "run") ceiling(dir, filter, threads);
     if (command == "score" || command == "run") return score(dir);
-    if (command != "generate" && command != "diagnose") {
+    if (command != "generate" && command != "diagnose" && command != "ceiling") {
       std::cerr << "lk_gap_benchmark: unknown command '" << command << "'\n";
       return 2;
     }

@@ -54,8 +54,8 @@ TEST(NoiseReference, EstimatesTheLogsNoiseAndCoversItsSpan) {
 
 TEST(NoiseReference, AccountsForTheSteeringExcessOfANoEffectLog) {
   // Noise on the logged torque and yaw rate drives the steering replay: a log with no effect shows a
-  // steering excess that the reference must reproduce (a factor 0.6-1.6 here; the benchmark's 12
-  // no-effect logs: within 10 % on average), so that the net gap is much smaller than the raw one.
+  // steering excess that the reference (the largest of its noise draws) must cover — here 0.0048
+  // against 0.0102 — so that the net gap is much smaller than the raw one.
   const GapLog log = generateBenchmarkLog(shortCase("none-2-sinusoid", 16.0), SensorNoise{}, 200.0);
   SimConfig nominal = benchmarkNominal("sinusoid");
   nominal.simulation.duration = 16.0;
@@ -66,8 +66,8 @@ TEST(NoiseReference, AccountsForTheSteeringExcessOfANoEffectLog) {
   const double steering = with_reference.how_far.subsystems_before.at("steering");
   const double reference = with_reference.how_far.subsystems_noise_reference.at("steering");
   ASSERT_GT(steering, 0.0);
-  EXPECT_GT(reference, 0.6 * steering);
-  EXPECT_LT(reference, 1.6 * steering);
+  EXPECT_GT(reference, steering);
+  EXPECT_LT(reference, 3.0 * steering);
   double raw2 = 0.0;
   for (const auto& [name, excess] : with_reference.how_far.subsystems_before) raw2 += excess * excess;
   // The net gap drops the steering's excess and part of the others' (here 0.0151 against a raw 0.0213;
@@ -81,6 +81,24 @@ TEST(NoiseReference, AccountsForTheSteeringExcessOfANoEffectLog) {
   const GapReport raw = diagnoseGap(nominal, {log}, {}, options);
   EXPECT_NEAR(raw.verdict.gap_before, std::sqrt(raw2), 1e-12);
   for (const auto& [name, value] : raw.how_far.subsystems_noise_reference) EXPECT_EQ(value, 0.0) << name;
+}
+
+TEST(NoiseReference, TheTruthModelRemovesTheWholeGapOfAHiddenActuationDelay) {
+  // The gap is what the model misses beyond noise, so the truth model (the best a candidate could be)
+  // must remove all of it. Near the floor a noise-only replay's excess is 0 or a few thousandths by the
+  // draw; subtracting the draws' RMS left the larger draws' excess as gap: on this benchmark log the
+  // truth model removed 78.4 % of the held-out gap (chassis draws 0, 0, 0.0032 against the log's
+  // 0.0023, which the delay does not touch). The largest draw leaves none.
+  BenchmarkCase c;
+  for (const auto& candidate : benchmarkCases()) {
+    if (candidate.id == "actuation_delay-small-sinusoid") c = candidate;
+  }
+  const GapLog log = generateBenchmarkLog(c, SensorNoise{}, 500.0);
+  const SimConfig nominal = benchmarkNominal("sinusoid");
+  const std::vector<double> gaps = heldoutGaps(nominal, {benchmarkTruth(c)}, {log}, {});
+  ASSERT_EQ(gaps.size(), 2u);
+  ASSERT_GT(gaps[0], 1e-3);
+  EXPECT_LT(gaps[1], 0.05 * gaps[0]) << "truth model gap " << gaps[1] << " of " << gaps[0];
 }
 
 }  // namespace

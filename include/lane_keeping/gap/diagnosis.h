@@ -59,6 +59,13 @@ struct DiagnosisArtifacts {
 GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
                       const DiagnosisOptions& options = {}, DiagnosisArtifacts* artifacts = nullptr);
 
+/// The held-out gap of `nominal`, then of each of `alternatives`, scored as diagnoseGap scores its
+/// candidates (the same held-out runs or blocks, the same noise reference). The gap benchmark's ceiling:
+/// the gap its truth model leaves, which no candidate fit can be expected to beat.
+std::vector<double> heldoutGaps(const SimConfig& nominal, const std::vector<SimConfig>& alternatives,
+                                const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
+                                const DiagnosisOptions& options = {});
+
 /// residuals.csv, spectrum.csv, overlay.csv in `dir`.
 void writeDiagnosisArtifacts(const std::string& dir, const DiagnosisArtifacts& artifacts);
 

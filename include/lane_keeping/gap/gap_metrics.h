@@ -7,9 +7,9 @@
 ///  * excess = sqrt(max(0, nrmse^2 - 1.1 floor^2)): the mismatch that is not noise (a residual variance
 ///    within 10 % of the noise variance counts as noise: the floor estimate scatters, and filtered noise
 ///    is not quite white).
-/// A subsystem's figures are the RMS over its outputs. `reference` is the excess the same replay shows
-/// on the log's noise-only reference (noise_reference.h): what measurement noise leaves through the
-/// replay's inputs even under a perfect model. The total gap is
+/// A subsystem's figures are the RMS over its outputs. `reference` is the largest excess the same
+/// replay shows on the log's noise-only reference draws (noise_reference.h): what measurement noise
+/// can leave through the replay's inputs even under a perfect model. The total gap is
 /// sqrt(sum over subsystems of max(0, excess^2 - reference^2)). Shrink = 1 - gap_after / gap_before.
 /// (Clipped per output on purpose: summing the signed nrmse^2 - 1.1 floor^2 was tried; the tracker's and
 /// actuator's large floors then scatter more than a steering gap is worth — docs/gap.md.)

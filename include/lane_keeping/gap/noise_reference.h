@@ -8,7 +8,8 @@
 /// The reference measures it on the log's own terms: the nominal closed loop simulated over the log's
 /// span at the log's sampling, with white noise at the levels estimated from the log (fourth
 /// differences), replayed exactly like the log. Its excess per subsystem is the part of the gap a
-/// perfect model would leave. Measured on the gap benchmark's 12 no-effect logs: steering excess
+/// perfect model would leave (the diagnosis takes the largest of a few draws: the excess of a noise-only
+/// replay is 0 or a few thousandths, depending on the draw). Measured on the gap benchmark's 12 no-effect logs: steering excess
 /// 0.0018-0.0035 (the reference gives 0.0022-0.0035 for the same manoeuvres), chassis 0-0.003 (a
 /// trace crossing the noise threshold or not), against 0.006-0.05 for the hidden effects.
 #include <string>
