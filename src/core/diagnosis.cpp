@@ -1028,7 +1028,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
     report.rows_skipped += log.rows_skipped;
     for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
   }
-  DataSplit split = splitData(train_logs, held_logs, options);
+  const DataSplit split = splitData(train_logs, held_logs, options);
   const std::vector<Dataset>& train = split.train;
   const std::vector<Dataset>& held = split.held;
   if (held_logs.empty()) report.heldout = split.held_blocks;
