@@ -9,8 +9,10 @@
 // cases.json, the logs and the nominal configurations, and writes DIR/reports/<case>/report.json.
 // `ceiling` (after the diagnosis, with the truth) scores each log's truth configuration as the
 // diagnosis scores a candidate and writes DIR/reports/<case>/ceiling.json: the shrink a perfect
-// candidate would reach, which replay limits and noise keep below 100 %. `score` compares the verdicts with truth.json and prints the confusion matrix, top-1 accuracy,
-// median held-out shrink when right, false alarms on no-effect logs and the out-of-list verdicts.
+// candidate would reach, which replay limits and noise keep below 100 %. `score` compares the verdicts
+// with truth.json and prints the confusion matrix, top-1 accuracy, median held-out shrink when right
+// (and the truth model's, where `ceiling` ran), false alarms on no-effect logs and the out-of-list
+// verdicts.
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -59,6 +61,24 @@ std::vector<BenchmarkCase> selectCases(const std::string& filter) {
   return out;
 }
 
+/// A case as truth.json holds it (caseFromTruth reads it back).
+json truthJson(const BenchmarkCase& c) {
+  return {{"id", c.id},         {"category", c.category},    {"truth", c.truth}, {"magnitude", c.magnitude},
+          {"manoeuvre", c.manoeuvre}, {"overlay", c.truth_overlay}, {"seed", c.seed}};
+}
+
+BenchmarkCase caseFromTruth(const json& t) {
+  BenchmarkCase c;
+  c.id = t["id"];
+  c.category = t["category"];
+  c.truth = t["truth"];
+  c.magnitude = t["magnitude"];
+  c.manoeuvre = t["manoeuvre"];
+  c.truth_overlay = t["overlay"].get<std::vector<std::string>>();
+  c.seed = t["seed"];
+  return c;
+}
+
 void generate(const std::string& dir, const std::string& filter, double log_rate) {
   makeDir(dir);
   makeDir(dir + "/logs");
@@ -75,13 +95,7 @@ void generate(const std::string& dir, const std::string& filter, double log_rate
     const std::string file = "logs/" + c.id + ".csv";
     writeCsvLog(dir + "/" + file, log);
     cases.push_back({{"id", c.id}, {"manoeuvre", c.manoeuvre}, {"log", file}});
-    truth.push_back({{"id", c.id},
-                     {"category", c.category},
-                     {"truth", c.truth},
-                     {"magnitude", c.magnitude},
-                     {"manoeuvre", c.manoeuvre},
-                     {"overlay", c.truth_overlay},
-                     {"seed", c.seed}});
+    truth.push_back(truthJson(c));
     std::fprintf(stderr, "[generate] %-44s %5zu rows  %.1f s\n", c.id.c_str(), log.size(),
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
@@ -107,18 +121,6 @@ void diagnose(const std::string& dir, const std::string& filter, int threads) {
                  report.verdict.effect.c_str(), report.verdict.confidence, 100.0 * report.verdict.shrink,
                  std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
-}
-
-BenchmarkCase caseFromTruth(const json& t) {
-  BenchmarkCase c;
-  c.id = t["id"];
-  c.category = t["category"];
-  c.truth = t["truth"];
-  c.magnitude = t["magnitude"];
-  c.manoeuvre = t["manoeuvre"];
-  c.truth_overlay = t["overlay"].get<std::vector<std::string>>();
-  c.seed = t["seed"];
-  return c;
 }
 
 void ceiling(const std::string& dir, const std::string& filter, int threads) {
