@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "lane_keeping/gap/benchmark_cases.h"
+#include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/diagnosis.h"
 
 using namespace lane_keeping;

@@ -51,6 +51,9 @@ struct CandidateEffect {
 /// The eleven candidates, in DESIGN §5 order.
 const std::vector<CandidateEffect>& candidateEffects();
 const CandidateEffect& candidateEffect(const std::string& name);
+/// Whether the named effect changes the replay of `subsystem` (a candidate can be the cause of a gap
+/// only in a subsystem it changes).
+bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem);
 
 /// Pairs the data of a lane-keeping run cannot always tell apart (reported as such when both score
 /// close to the winner): each effect's known look-alikes.

@@ -19,42 +19,20 @@
 ///    candidate qualifies (winner_selection.h).
 /// 4. How far: the gap before and after adding the winner, per subsystem on held-out data and in a
 ///    closed-loop replay of the held-out runs.
-#include <functional>
-#include <map>
-#include <string>
+///
+/// Each stage has its own file: data and split (diagnosis_data.h), evaluation and metrics
+/// (evaluation.h), candidate fitting (candidate_objective.h, candidate_fit.h, bounded_loop.h,
+/// bounded_refit.h), where (where_analysis.h), verdict (verdict.h), how far (how_far.h); diagnoseGap
+/// runs them in that order.
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/gap/diagnosis_artifacts.h"
+#include "lane_keeping/gap/diagnosis_options.h"
 #include "lane_keeping/gap/gap_log.h"
 #include "lane_keeping/gap/gap_report.h"
-#include "lane_keeping/gap/subsystem_replay.h"
 
 namespace lane_keeping {
-
-struct DiagnosisOptions {
-  ReplayOptions replay;
-  double block_length = 3.0;        ///< [s] train/held-out blocks when a single log is given
-  double start_margin = 0.6;        ///< [s] skipped at the start of each log (delayed inputs need history)
-  double detection_gap = 1e-3;      ///< nominal held-out gap below which there is nothing to explain
-  int noise_reference_draws = 3;    ///< noise draws of the noise-only reference (0: no reference)
-  double min_shrink = 0.3;          ///< fraction of the held-out gap a candidate must remove
-  double min_evidence_per_parameter = 50.0;  ///< held-out evidence a candidate needs per fitted parameter
-  double upstream_share = 0.2;      ///< chassis excess (relative to steering) that makes the chassis the "where"
-  int threads = 2;                  ///< candidates fitted in parallel
-  bool closed_loop = true;          ///< run the closed-loop replays of "how far"
-  std::vector<std::string> effects; ///< restrict the candidates (empty: all)
-  std::function<void(const std::string&)> progress;  ///< progress messages (may be empty)
-};
-
-/// Series for the plots (scripts/gap_report_plots.py formats).
-struct DiagnosisArtifacts {
-  std::vector<double> residual_t;
-  std::map<std::string, std::vector<double>> residual;  ///< per subsystem, NaN where not replayed
-  std::vector<double> spectrum_f;
-  std::map<std::string, std::vector<double>> spectrum;
-  std::vector<double> overlay_t;
-  std::map<std::string, std::vector<double>> overlay;  ///< y_real, y_nominal, y_corrected, yaw_rate_*, delta_*
-};
 
 GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
                       const DiagnosisOptions& options = {}, DiagnosisArtifacts* artifacts = nullptr);
@@ -65,8 +43,5 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
 std::vector<double> heldoutGaps(const SimConfig& nominal, const std::vector<SimConfig>& alternatives,
                                 const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
                                 const DiagnosisOptions& options = {});
-
-/// residuals.csv, spectrum.csv, overlay.csv in `dir`.
-void writeDiagnosisArtifacts(const std::string& dir, const DiagnosisArtifacts& artifacts);
 
 }  // namespace lane_keeping

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "lane_keeping/analysis/oscillation.h"
+#include "lane_keeping/sim/oscillation.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/sim/closed_loop.h"
 

@@ -1,4 +1,4 @@
-#include "lane_keeping/analysis/oscillation.h"
+#include "lane_keeping/sim/oscillation.h"
 
 #include <algorithm>
 #include <cmath>

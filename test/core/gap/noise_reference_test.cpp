@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "lane_keeping/gap/benchmark_cases.h"
+#include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/noise_reference.h"
 

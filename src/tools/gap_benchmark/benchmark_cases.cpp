@@ -1,4 +1,4 @@
-#include "lane_keeping/gap/benchmark_cases.h"
+#include "gap_benchmark/benchmark_cases.h"
 
 #include <cmath>
 #include <map>

@@ -7,7 +7,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "lane_keeping/gap/benchmark_cases.h"
+#include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/gap_metrics.h"
 #include "lane_keeping/gap/log_signals.h"
 #include "lane_keeping/gap/noise_reference.h"

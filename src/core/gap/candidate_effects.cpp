@@ -1,5 +1,6 @@
 #include "lane_keeping/gap/candidate_effects.h"
 
+#include <algorithm>
 #include <sstream>
 
 #include "lane_keeping/common/errors.h"
@@ -148,6 +149,11 @@ const CandidateEffect& candidateEffect(const std::string& name) {
     if (c.name == name) return c;
   }
   throw LaneKeepingError("unknown candidate effect '" + name + "'");
+}
+
+bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem) {
+  const CandidateEffect& e = candidateEffect(effect);
+  return std::find(e.subsystems.begin(), e.subsystems.end(), subsystem) != e.subsystems.end();
 }
 
 const std::vector<std::string>& knownLookAlikes(const std::string& effect) {

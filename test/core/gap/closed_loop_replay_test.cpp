@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "lane_keeping/gap/benchmark_cases.h"
+#include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/closed_loop_replay.h"
 #include "lane_keeping/gap/log_signals.h"
 #include "lane_keeping/gap/noise_reference.h"

@@ -30,7 +30,7 @@
 #include <nlohmann/json.hpp>
 
 #include "lane_keeping/common/errors.h"
-#include "lane_keeping/gap/benchmark_cases.h"
+#include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/gap_report.h"
 

@@ -13,7 +13,7 @@
 #include <functional>
 
 #include "lane_keeping/analysis/config_parameter.h"
-#include "lane_keeping/analysis/oscillation.h"
+#include "lane_keeping/sim/oscillation.h"
 #include "lane_keeping/analysis/stability_boundary.h"
 #include "lane_keeping/sim/closed_loop.h"
 

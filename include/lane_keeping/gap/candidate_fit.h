@@ -1,0 +1,61 @@
+#pragma once
+/// Fitting one candidate effect (diagnosis.h, step 3): a robust coordinate search (grid + golden
+/// section per parameter), polished by Levenberg-Marquardt (Ceres) for smooth parameters, then the
+/// fit's parameters, uncertainty, bound flag and training / held-out scores.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/gap/bounded_loop.h"
+#include "lane_keeping/gap/candidate_effects.h"
+#include "lane_keeping/gap/candidate_objective.h"
+#include "lane_keeping/gap/diagnosis_options.h"
+#include "lane_keeping/gap/evaluation.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+
+struct CandidateFit {
+  const CandidateEffect* effect = nullptr;
+  bool ok = false;
+  std::string note;
+  std::vector<double> theta, sigma;
+  bool at_bound = false;  ///< a fitted parameter is pinned at a bound of its range
+  std::string stability_note;  ///< set when the least-squares fit's closed loop leaves the logged bounds
+  /// Logs on which the fit's closed loop leaves the bounds (empty: it stays bounded, also after a
+  /// bounded refit that succeeded).
+  std::vector<BoundedLoopRequirement> unbounded_on;
+  SimConfig corrected;
+  double train_before = 0.0, train_after = 0.0;
+  double heldout_before = 0.0, heldout_after = 0.0;
+  double evidence = 0.0;  ///< held-out reduction of the noise-normalised squared residual (see evidenceOf)
+  std::map<std::string, SubsystemScore> heldout_scores;
+};
+
+/// Minimises the loss over parameter j with the others fixed: a grid over [lo, hi] (log-spaced for
+/// log-scale parameters), then golden section in the bracket around the best grid point.
+double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
+                  int points, double current_loss);
+
+/// Robust low-dimensional fit: coordinate-wise grid + golden section over the whole bounds, then a
+/// second round in a narrowed range. (Gauss-Newton alone crawls here: stick-slip friction and
+/// saturations make the residuals far from linear in the parameters.)
+std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta = {});
+
+/// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt.
+std::vector<double> leastSquaresFit(const CandidateObjective& objective);
+
+/// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta.
+void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const std::vector<Dataset>& train,
+              const std::vector<Dataset>& heldout, const Evaluation& nominal_train, const Evaluation& nominal_heldout,
+              const DiagnosisOptions& options, CandidateFit* out);
+
+/// The least-squares fit of one candidate, scored; `unbounded_on` lists the training logs whose
+/// closed loop it makes leave the logged bounds (refitBounded fits it again under them).
+CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& train,
+                          const std::vector<Dataset>& heldout, const Evaluation& nominal_train,
+                          const Evaluation& nominal_heldout, const DiagnosisOptions& options);
+
+}  // namespace diagnosis
+}  // namespace lane_keeping

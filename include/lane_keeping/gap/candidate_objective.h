@@ -1,0 +1,65 @@
+#pragma once
+/// The loss a candidate's fit minimises (diagnosis.h, step 3): the replays of the subsystems the
+/// candidate changes, run with its parameters, over the training data; optionally with the closed
+/// loop of each fitted configuration required to stay within the logged bounds (bounded_loop.h).
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/gap/bounded_loop.h"
+#include "lane_keeping/gap/candidate_effects.h"
+#include "lane_keeping/gap/evaluation.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+
+/// The loss of one candidate as a function of its (transformed) parameters.
+class CandidateObjective {
+ public:
+  CandidateObjective(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& data,
+                     const ReplayOptions& options, const Sigma1Cache& nominal_sigma1);
+
+  /// Parameters from fit space (log for log-scale ones) to SI.
+  std::vector<double> toTheta(const double* x) const;
+  std::vector<double> toFitSpace(const std::vector<double>& theta) const;
+
+  /// The nominal configuration with the effect at parameters theta (SI).
+  SimConfig configFor(const std::vector<double>& theta) const;
+
+  /// Residual vector for parameters theta (SI); false if the configuration is invalid, or if it makes
+  /// the closed loop diverge on a log where stability is required.
+  bool residuals(const std::vector<double>& theta, std::vector<double>* out) const;
+
+  /// Sum of squared residuals. Under a stability requirement a point whose closed loop diverges ranks
+  /// after every bounded one, and the later it diverges the better — so that a coordinate search
+  /// started in the unstable region finds its way out.
+  double loss(const std::vector<double>& theta) const;
+
+  const std::set<std::string>& subsystems() const { return subsystems_; }
+  const CandidateEffect& effect() const { return effect_; }
+
+  /// The closed loop must stay bounded on these logs over these horizons, its steering angle within
+  /// `max_steering_angle` and its torque command within `max_torque`.
+  void requireStability(std::vector<BoundedLoopRequirement> requirements) { stable_on_ = std::move(requirements); }
+
+ private:
+  static constexpr double kUnstableLoss = 1e100;
+
+  void replayResiduals(const SimConfig& c, std::vector<double>* out) const;
+
+  /// 0 if the closed loop of `c` stays bounded on every required log, else 1 - (time it took to
+  /// diverge) / horizon, in (0, 1].
+  double divergence(const SimConfig& c) const;
+
+  std::vector<BoundedLoopRequirement> stable_on_;
+  const CandidateEffect& effect_;
+  const SimConfig& nominal_;
+  const std::vector<Dataset>& data_;
+  ReplayOptions options_;
+  const Sigma1Cache& nominal_sigma1_;
+  std::set<std::string> subsystems_;
+};
+
+}  // namespace diagnosis
+}  // namespace lane_keeping

@@ -1,0 +1,214 @@
+#include "lane_keeping/gap/candidate_fit.h"
+
+#include <Eigen/Dense>
+#include <ceres/ceres.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+
+namespace lane_keeping {
+namespace diagnosis {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+/// Ceres functor over the transformed parameters.
+struct CeresResiduals {
+  const CandidateObjective* objective;
+  std::size_t count;
+  bool operator()(double const* const* parameters, double* residuals) const {
+    std::vector<double> r;
+    if (!objective->residuals(objective->toTheta(parameters[0]), &r) || r.size() != count) return false;
+    std::copy(r.begin(), r.end(), residuals);
+    return true;
+  }
+};
+
+}  // namespace
+
+double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
+                  int points, double current_loss) {
+  const EffectParameter& p = objective.effect().params[j];
+  auto lossAt = [&](double value) {
+    std::vector<double> t = theta;
+    t[j] = value;
+    return objective.loss(t);
+  };
+  auto toAxis = [&](double v) { return p.log_scale ? std::log(v) : v; };
+  auto fromAxis = [&](double u) { return p.log_scale ? std::exp(u) : u; };
+  const double ua = toAxis(lo), ub = toAxis(hi);
+  std::vector<double> grid, losses;
+  for (int i = 0; i < points; ++i) {
+    grid.push_back(ua + (ub - ua) * i / (points - 1));
+    losses.push_back(lossAt(fromAxis(grid.back())));
+  }
+  const std::size_t best = static_cast<std::size_t>(std::min_element(losses.begin(), losses.end()) - losses.begin());
+  double a = grid[best > 0 ? best - 1 : 0], b = grid[std::min(best + 1, grid.size() - 1)];
+  const double phi = 0.5 * (std::sqrt(5.0) - 1.0);
+  double c = b - phi * (b - a), d = a + phi * (b - a);
+  double fc = lossAt(fromAxis(c)), fd = lossAt(fromAxis(d));
+  for (int it = 0; it < 10 && (b - a) > 1e-3 * (1.0 + std::fabs(b)); ++it) {
+    if (fc < fd) {
+      b = d; d = c; fd = fc; c = b - phi * (b - a); fc = lossAt(fromAxis(c));
+    } else {
+      a = c; c = d; fc = fd; d = a + phi * (b - a); fd = lossAt(fromAxis(d));
+    }
+  }
+  double u = fc < fd ? c : d, loss = std::min(fc, fd);
+  if (losses[best] < loss) {
+    u = grid[best];
+    loss = losses[best];
+  }
+  if (loss < current_loss) {
+    theta[j] = fromAxis(u);
+    return loss;
+  }
+  return current_loss;
+}
+
+std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta) {
+  const auto& params = objective.effect().params;
+  if (theta.empty()) {
+    for (const auto& p : params) theta.push_back(p.initial);
+  }
+  double loss = objective.loss(theta);
+  for (int round = 0; round < (params.size() > 1 ? 2 : 1); ++round) {
+    for (std::size_t j = 0; j < params.size(); ++j) {
+      const auto& p = params[j];
+      double lo = p.lower, hi = p.upper;
+      if (round > 0) {  // narrow the range around the current value
+        if (p.log_scale) {
+          lo = std::max(p.lower, theta[j] / 3.0);
+          hi = std::min(p.upper, theta[j] * 3.0);
+        } else {
+          const double span = 0.15 * (p.upper - p.lower);
+          lo = std::max(p.lower, theta[j] - span);
+          hi = std::min(p.upper, theta[j] + span);
+        }
+      }
+      loss = lineSearch(objective, theta, j, lo, hi, round == 0 ? 13 : 7, loss);
+    }
+  }
+  return theta;
+}
+
+std::vector<double> leastSquaresFit(const CandidateObjective& objective) {
+  const CandidateEffect& effect = objective.effect();
+  std::vector<double> theta = coordinateFit(objective);
+  if (effect.profile) return theta;
+  // Polish with Levenberg-Marquardt (Ceres, central differences) from the coordinate optimum.
+  std::vector<double> x = objective.toFitSpace(theta);
+  std::vector<double> r0;
+  if (!objective.residuals(theta, &r0)) return theta;
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<CeresResiduals, ceres::CENTRAL>(
+      new CeresResiduals{&objective, r0.size()});
+  cost->AddParameterBlock(static_cast<int>(x.size()));
+  cost->SetNumResiduals(static_cast<int>(r0.size()));
+  ceres::Problem problem;
+  problem.AddResidualBlock(cost, nullptr, x.data());
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const auto& p = effect.params[i];
+    problem.SetParameterLowerBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.lower) : p.lower);
+    problem.SetParameterUpperBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.upper) : p.upper);
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = 4;
+  solver.function_tolerance = 1e-6;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  const std::vector<double> polished = objective.toTheta(x.data());
+  if (std::getenv("LK_GAP_DEBUG")) std::fprintf(stderr, "%s: %s\n", effect.name.c_str(), summary.BriefReport().c_str());
+  if (objective.loss(polished) < objective.loss(theta)) theta = polished;
+  return theta;
+}
+
+void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const std::vector<Dataset>& train,
+              const std::vector<Dataset>& heldout, const Evaluation& nominal_train, const Evaluation& nominal_heldout,
+              const DiagnosisOptions& options, CandidateFit* out) {
+  CandidateFit& fit = *out;
+  const CandidateEffect& effect = objective.effect();
+  fit.theta = theta;
+  fit.corrected = objective.configFor(theta);
+  fit.at_bound = false;
+  for (std::size_t i = 0; i < theta.size(); ++i) {
+    const auto& p = effect.params[i];
+    const double span = p.log_scale ? std::log(p.upper / p.lower) : (p.upper - p.lower);
+    const double from_lower = p.log_scale ? std::log(theta[i] / p.lower) : theta[i] - p.lower;
+    const double from_upper = p.log_scale ? std::log(p.upper / theta[i]) : p.upper - theta[i];
+    if (std::min(from_lower, from_upper) < 0.01 * span) fit.at_bound = true;
+  }
+
+  // 1-sigma uncertainty from the Gauss-Newton covariance s^2 (J^T J)^-1 at the optimum (central
+  // differences in SI units). Residuals of neighbouring samples are correlated, so this is a lower bound.
+  // (The local curvature of the least-squares loss, also at a fit held to a stable closed loop.)
+  std::vector<double> r_opt;
+  if (objective.residuals(theta, &r_opt)) {
+    const std::size_t n = r_opt.size(), p = theta.size();
+    Eigen::MatrixXd J(n, p);
+    bool ok = true;
+    for (std::size_t j = 0; j < p && ok; ++j) {
+      const double h = 1e-4 * std::max(std::fabs(theta[j]), effect.params[j].log_scale ? 1e-3 : 1e-3 * (effect.params[j].upper - effect.params[j].lower));
+      std::vector<double> tp = theta, tm = theta, rp, rm;
+      tp[j] += h;
+      tm[j] -= h;
+      ok = objective.residuals(tp, &rp) && objective.residuals(tm, &rm) && rp.size() == n && rm.size() == n;
+      for (std::size_t i = 0; ok && i < n; ++i) J(i, j) = (rp[i] - rm[i]) / (2.0 * h);
+    }
+    fit.sigma.assign(p, kNaN);
+    if (ok && n > p) {
+      // Residuals are weighted by 1/sqrt(N_trace); s^2 is estimated per weighted residual.
+      const double s2 = sumOfSquares(r_opt) / static_cast<double>(n - p);
+      const Eigen::MatrixXd info = J.transpose() * J;
+      const Eigen::MatrixXd cov = s2 * info.completeOrthogonalDecomposition().pseudoInverse();
+      for (std::size_t j = 0; j < p; ++j) fit.sigma[j] = std::sqrt(std::max(0.0, cov(j, j)));
+    }
+  }
+
+  // Scores: training and held-out, all subsystems (unchanged ones keep their nominal scores).
+  const std::set<std::string>& changed = objective.subsystems();
+  const bool reuse = changed.count("chassis") == 0;
+  const Evaluation train_ev = evaluate(fit.corrected, train, changed, options.replay, reuse ? &nominal_train.sigma1 : nullptr);
+  const Evaluation held_ev =
+      evaluate(fit.corrected, heldout, changed, options.replay, reuse ? &nominal_heldout.sigma1 : nullptr);
+  fit.train_before = combinedGap([&] {
+    std::vector<SubsystemScore> v;
+    for (const auto& [n, s] : nominal_train.scores) v.push_back(s);
+    return v;
+  }());
+  fit.train_after = gapOf(nominal_train.scores, train_ev.scores);
+  fit.heldout_before = gapOf(nominal_heldout.scores, {});
+  fit.heldout_after = gapOf(nominal_heldout.scores, held_ev.scores);
+  fit.heldout_scores = nominal_heldout.scores;
+  for (const auto& [n, s] : held_ev.scores) {
+    fit.heldout_scores[n] = s;
+    fit.heldout_scores[n].reference = nominal_heldout.scores.at(n).reference;
+  }
+  fit.evidence = evidenceOf(nominal_heldout.scores, held_ev.scores);
+  fit.ok = true;
+}
+
+CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& train,
+                          const std::vector<Dataset>& heldout, const Evaluation& nominal_train,
+                          const Evaluation& nominal_heldout, const DiagnosisOptions& options) {
+  CandidateFit fit;
+  fit.effect = &effect;
+  CandidateObjective objective(effect, nominal, train, options.replay, nominal_train.sigma1);
+  std::vector<double> theta;
+  try {
+    theta = leastSquaresFit(objective);
+    fit.unbounded_on = stabilityRequirements(objective, theta, train, nominal, &fit.stability_note);
+  } catch (const std::exception& e) {
+    fit.note = std::string("fit failed: ") + e.what();
+    return fit;
+  }
+  scoreFit(objective, theta, train, heldout, nominal_train, nominal_heldout, options, &fit);
+  return fit;
+}
+
+}  // namespace diagnosis
+}  // namespace lane_keeping

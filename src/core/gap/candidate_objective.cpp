@@ -1,0 +1,65 @@
+#include "lane_keeping/gap/candidate_objective.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace lane_keeping {
+namespace diagnosis {
+
+CandidateObjective::CandidateObjective(const CandidateEffect& effect, const SimConfig& nominal,
+                                       const std::vector<Dataset>& data, const ReplayOptions& options,
+                                       const Sigma1Cache& nominal_sigma1)
+    : effect_(effect), nominal_(nominal), data_(data), options_(options), nominal_sigma1_(nominal_sigma1) {
+  subsystems_ = std::set<std::string>(effect.subsystems.begin(), effect.subsystems.end());
+}
+
+std::vector<double> CandidateObjective::toTheta(const double* x) const {
+  std::vector<double> theta(effect_.params.size());
+  for (std::size_t i = 0; i < theta.size(); ++i) theta[i] = effect_.params[i].log_scale ? std::exp(x[i]) : x[i];
+  return theta;
+}
+
+std::vector<double> CandidateObjective::toFitSpace(const std::vector<double>& theta) const {
+  std::vector<double> x(theta.size());
+  for (std::size_t i = 0; i < x.size(); ++i) x[i] = effect_.params[i].log_scale ? std::log(theta[i]) : theta[i];
+  return x;
+}
+
+SimConfig CandidateObjective::configFor(const std::vector<double>& theta) const {
+  SimConfig c = nominal_;
+  effect_.apply(theta, c);
+  return c;
+}
+
+bool CandidateObjective::residuals(const std::vector<double>& theta, std::vector<double>* out) const {
+  const SimConfig c = configFor(theta);
+  if (!c.problems().empty() || divergence(c) > 0.0) return false;
+  replayResiduals(c, out);
+  return true;
+}
+
+double CandidateObjective::loss(const std::vector<double>& theta) const {
+  const SimConfig c = configFor(theta);
+  if (!c.problems().empty()) return std::numeric_limits<double>::infinity();
+  if (const double d = divergence(c); d > 0.0) return kUnstableLoss * (1.0 + d);
+  std::vector<double> r;
+  replayResiduals(c, &r);
+  return sumOfSquares(r);
+}
+
+void CandidateObjective::replayResiduals(const SimConfig& c, std::vector<double>* out) const {
+  const bool reuse = subsystems_.count("chassis") == 0;
+  *out = fitResiduals(evaluate(c, data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr));
+}
+
+double CandidateObjective::divergence(const SimConfig& c) const {
+  for (const BoundedLoopRequirement& s : stable_on_) {
+    const LoopDivergence d = boundsCheck(c, s);
+    if (d.diverged) return std::clamp(1.0 - d.time / s.horizon, 1e-6, 1.0);
+  }
+  return 0.0;
+}
+
+}  // namespace diagnosis
+}  // namespace lane_keeping

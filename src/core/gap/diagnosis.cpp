@@ -1,0 +1,148 @@
+#include "lane_keeping/gap/diagnosis.h"
+
+#include <algorithm>
+#include <chrono>
+#include <memory>
+#include <set>
+#include <string>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/common/parallel_for.h"
+#include "lane_keeping/gap/bounded_refit.h"
+#include "lane_keeping/gap/candidate_effects.h"
+#include "lane_keeping/gap/candidate_fit.h"
+#include "lane_keeping/gap/diagnosis_data.h"
+#include "lane_keeping/gap/evaluation.h"
+#include "lane_keeping/gap/how_far.h"
+#include "lane_keeping/gap/verdict.h"
+#include "lane_keeping/gap/where_analysis.h"
+
+namespace lane_keeping {
+
+using namespace diagnosis;
+
+std::vector<double> heldoutGaps(const SimConfig& nominal, const std::vector<SimConfig>& alternatives,
+                                const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
+                                const DiagnosisOptions& options) {
+  if (training.empty()) throw InputError("gap diagnosis: no training log given");
+  nominal.validate();
+  const DataSplit split = splitData(signalsOf(training), signalsOf(heldout), options);
+  const std::set<std::string> all = allSubsystems();
+  Evaluation nominal_held = evaluate(nominal, split.held, all, options.replay);
+  if (options.noise_reference_draws > 0) {
+    std::vector<std::string> notes;
+    setReference(nominal_held.scores, noiseReferenceExcess(nominal, split.held, options.replay,
+                                                           options.noise_reference_draws, options.threads, &notes));
+  }
+  std::vector<double> gaps{gapOf(nominal_held.scores, {})};
+  for (const SimConfig& config : alternatives) {
+    config.validate();
+    gaps.push_back(gapOf(nominal_held.scores, evaluate(config, split.held, all, options.replay).scores));
+  }
+  return gaps;
+}
+
+GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
+                      const DiagnosisOptions& options, DiagnosisArtifacts* artifacts) {
+  if (training.empty()) throw InputError("gap diagnosis: no training log given");
+  nominal.validate();
+  auto say = [&](const std::string& message) {
+    if (options.progress) options.progress(message);
+  };
+  GapReport report;
+  using Clock = std::chrono::steady_clock;
+  auto secondsSince = [](Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); };
+
+  // ---- 1. Data: training and held-out runs, or blocks of the logs (diagnosis_data.h) ------------
+  std::vector<std::shared_ptr<const LogSignals>> train_logs, held_logs;
+  for (const auto& log : training) {
+    train_logs.push_back(std::make_shared<LogSignals>(log));
+    report.logs.push_back(log.source);
+    report.rows_used += log.size();
+    report.rows_skipped += log.rows_skipped;
+    for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
+  }
+  for (const auto& log : heldout) {
+    held_logs.push_back(std::make_shared<LogSignals>(log));
+    report.heldout.push_back(log.source);
+    report.rows_used += log.size();
+    report.rows_skipped += log.rows_skipped;
+    for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
+  }
+  const DataSplit split = splitData(train_logs, held_logs, options);
+  const std::vector<Dataset>& train = split.train;
+  const std::vector<Dataset>& held = split.held;
+  if (held_logs.empty()) report.heldout = split.held_blocks;
+
+  // ---- 2. Where: the nominal replays, net of the noise-only reference (evaluation.h, where_analysis.h)
+  say("replaying subsystems with the nominal model");
+  const Clock::time_point where_start = Clock::now();
+  const std::set<std::string> all = allSubsystems();
+  Evaluation nominal_train = evaluate(nominal, train, all, options.replay);
+  Evaluation nominal_held = evaluate(nominal, held, all, options.replay);
+  std::map<std::string, double> reference;
+  if (options.noise_reference_draws > 0) {
+    // On held-out data, where shrink is measured; the training blocks (or runs) have the same noise
+    // levels and sampling, so their gaps use the same reference (and so does the "where" report).
+    say("replaying the noise-only reference (nominal closed loop with the logs' noise levels)");
+    reference =
+        noiseReferenceExcess(nominal, held, options.replay, options.noise_reference_draws, options.threads, &report.notes);
+    setReference(nominal_train.scores, reference);
+    setReference(nominal_held.scores, reference);
+  }
+  std::vector<Dataset> everything = train;
+  everything.insert(everything.end(), held.begin(), held.end());
+  // (For the "where" report, the union of training and held-out data.)
+  Evaluation nominal_all = evaluate(nominal, everything, all, options.replay);
+  setReference(nominal_all.scores, reference);
+  report.where = whereAnalysis(nominal_all, everything, nominal, options.upstream_share, artifacts);
+  const double gap_before = gapOf(nominal_held.scores, {});
+  report.wall_seconds.emplace_back("where", secondsSince(where_start));
+
+  // ---- 3. Which: every candidate fitted on training data, scored on held-out data (candidate_fit.h)
+  std::vector<const CandidateEffect*> candidates;
+  for (const auto& c : candidateEffects()) {
+    if (options.effects.empty() || std::find(options.effects.begin(), options.effects.end(), c.name) != options.effects.end()) {
+      candidates.push_back(&c);
+    }
+  }
+  std::vector<CandidateFit> fits(candidates.size());
+  std::vector<double> fit_seconds(candidates.size(), 0.0);
+  const Clock::time_point which_start = Clock::now();
+  parallelFor(
+      candidates.size(), options.threads,
+      [&](std::size_t i) {
+        const Clock::time_point start = Clock::now();
+        fits[i] = fitCandidate(*candidates[i], nominal, train, held, nominal_train, nominal_held, options);
+        fit_seconds[i] = secondsSince(start);
+      },
+      [&](std::size_t i) { say("fitting " + candidates[i]->name); });
+  for (std::size_t i = 0; i < candidates.size(); ++i) {
+    report.wall_seconds.emplace_back("fit " + candidates[i]->name, fit_seconds[i]);
+  }
+  // Fits whose closed loop leaves the logged bounds, fitted again under them where that could change
+  // the verdict (bounded_refit.h).
+  for (const auto& stage : refitWhereTheyCouldWin(nominal, train, held, nominal_train, nominal_held, gap_before,
+                                                  report.where.subsystem, options, &fits)) {
+    report.wall_seconds.push_back(stage);
+  }
+  report.wall_seconds.emplace_back("which", secondsSince(which_start));
+
+  // ---- Verdict (verdict.h) ------------------------------------------------------------------------
+  report.ranking = rankFits(fits, nominal, gap_before, &report.notes);
+  report.verdict = decideVerdict(report.ranking, pinnedEffects(fits), report.where.subsystem, gap_before, options);
+
+  // ---- 4. How far: the gap before and after the winner (how_far.h) ---------------------------------
+  const CandidateFit* winner = nullptr;
+  for (const auto& fit : fits) {
+    if (fit.ok && fit.effect->name == report.verdict.effect) winner = &fit;
+  }
+  if (options.closed_loop) say("closed-loop replays");
+  const Clock::time_point how_far_start = Clock::now();
+  howFar(nominal, winner, nominal_held, held_logs.empty() ? train_logs : held_logs, options, &report, artifacts);
+  if (options.closed_loop) report.wall_seconds.emplace_back("how_far", secondsSince(how_far_start));
+  say("done");
+  return report;
+}
+
+}  // namespace lane_keeping

@@ -1,0 +1,69 @@
+#include "lane_keeping/gap/how_far.h"
+
+#include <cmath>
+#include <limits>
+
+#include "lane_keeping/gap/closed_loop_replay.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+namespace {
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
+}  // namespace
+
+void howFar(const SimConfig& nominal, const CandidateFit* winner, const Evaluation& nominal_held,
+            const std::vector<std::shared_ptr<const LogSignals>>& runs, const DiagnosisOptions& options,
+            GapReport* report, DiagnosisArtifacts* artifacts) {
+  for (const auto& [name, score] : nominal_held.scores) {
+    report->how_far.subsystems_before[name] = score.excess;
+    report->how_far.subsystems_noise_reference[name] = score.reference;
+  }
+  for (const auto& [name, score] : (winner ? winner->heldout_scores : nominal_held.scores)) {
+    report->how_far.subsystems_after[name] = score.excess;
+  }
+  if (options.closed_loop) {
+    double before = 0.0, after = 0.0;
+    int counted = 0;
+    for (std::size_t i = 0; i < runs.size(); ++i) {
+      const Evaluation chassis = evaluate(nominal, wholeLogs({runs[i]}, 0.0), {"chassis"}, options.replay);
+      const double s1 = chassis.sigma1.empty() || chassis.sigma1[0].empty() ? kNaN : chassis.sigma1[0].front().second;
+      const ClosedLoopReplay b = closedLoopReplay(nominal, *runs[i], s1);
+      const ClosedLoopReplay a = winner ? closedLoopReplay(winner->corrected, *runs[i], s1) : b;
+      if (!b.note.empty()) report->notes.push_back("nominal " + b.note);
+      if (winner && !a.note.empty()) report->notes.push_back("corrected " + a.note);
+      if (std::isfinite(b.gap) && std::isfinite(a.gap)) {
+        before += b.gap * b.gap;
+        after += a.gap * a.gap;
+        ++counted;
+      }
+      if (artifacts != nullptr && i == 0) {
+        artifacts->overlay_t = b.t;
+        artifacts->overlay["y_real"] = {};
+        for (double t : b.t) {
+          artifacts->overlay["y_real"].push_back(runs[i]->at(LogSignals::kY, t));
+          artifacts->overlay["yaw_rate_real"].push_back(runs[i]->at(LogSignals::kYawRate, t));
+          artifacts->overlay["delta_real"].push_back(runs[i]->at(LogSignals::kDelta, t));
+        }
+        artifacts->overlay["y_nominal"] = b.y;
+        artifacts->overlay["yaw_rate_nominal"] = b.yaw_rate;
+        artifacts->overlay["delta_nominal"] = b.delta;
+        if (winner) {
+          auto pad = [&](std::vector<double> v) {
+            v.resize(b.t.size(), kNaN);
+            return v;
+          };
+          artifacts->overlay["y_corrected"] = pad(a.y);
+          artifacts->overlay["yaw_rate_corrected"] = pad(a.yaw_rate);
+          artifacts->overlay["delta_corrected"] = pad(a.delta);
+        }
+      }
+    }
+    report->how_far.before = counted ? std::sqrt(before / counted) : kNaN;
+    report->how_far.after = counted ? std::sqrt(after / counted) : kNaN;
+  }
+}
+
+}  // namespace diagnosis
+}  // namespace lane_keeping
