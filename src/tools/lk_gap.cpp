@@ -1,6 +1,7 @@
 // lk_gap: sim-to-real gap diagnosis.
-//   lk_gap --config nominal.yaml [--set key=value ...] --log run.csv [--log more.csv ...]
-//          [--holdout other.csv ...] --report DIR [--effects a,b,...] [--threads N] [--no-plots] [--quiet]
+//   lk_gap --config nominal.yaml [--set key=value ...] --log run.csv [--scenario run.yaml] [--log more.csv ...]
+//          [--holdout other.csv [--scenario other.yaml] ...] --report DIR [--effects a,b,...] [--threads N]
+//          [--no-plots] [--quiet]
 // Writes DIR/report.json (DESIGN §5 fields), DIR/report.md and plots (residuals, spectra, overlays,
 // ranking). Exit status: 0 ok, 2 bad configuration, 4 bad input data, 1 other error.
 #include <cstdlib>
@@ -14,6 +15,7 @@
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/gap_log.h"
+#include "lane_keeping/gap/gap_run.h"
 #include "lane_keeping/gap/gap_report_markdown.h"
 #include "lane_keeping/gap/log_reader.h"
 #include "bag_log_reader.h"
@@ -21,12 +23,16 @@
 namespace {
 
 void usage(std::ostream& out) {
-  out << "usage: lk_gap --config nominal.yaml [--set key=value ...] --log run.csv|run.bag [--log ...]\n"
-         "              [--holdout other.csv|other.bag ...] --report DIR [--effects a,b] [--threads N]\n"
-         "              [--no-plots] [--quiet]\n"
-         "  --config   the nominal configuration (the same YAML lk_simulate and the nodes use)\n"
+  out << "usage: lk_gap --config nominal.yaml [--set key=value ...] --log run.csv|run.bag [--scenario run.yaml]\n"
+         "              [--log ...] [--holdout other.csv|other.bag [--scenario other.yaml] ...] --report DIR\n"
+         "              [--effects a,b] [--threads N] [--no-plots] [--quiet]\n"
+         "  --config   the nominal configuration (the same YAML lk_simulate and the nodes use): the car, its\n"
+         "             controllers and delays, shared by every run\n"
          "  --log      a log of a real run (CSV with DESIGN §5 columns, or a bag of the suite's topics)\n"
-         "  --holdout  held-out runs for scoring; without them, alternate 3 s blocks of the logs are held out\n"
+         "  --scenario right after a --log or --holdout: that run's own settings (path, initial state, duration,\n"
+         "             speed, test signal) overlaid on the nominal; without one the run uses the shared\n"
+         "             configuration; an initial state configured nowhere is taken from the log's first samples\n"
+         "  --holdout  held-out runs for scoring; without them, blocks of the logs are held out\n"
          "  --report   output directory: report.json, report.md, *.csv, *.png\n"
          "  --noise-reference-draws N   noise draws of the noise-only reference (the gap is net of the largest)\n"
          "             (default 3; 0 = raw excess, no reference)\n";
@@ -46,7 +52,12 @@ std::vector<std::string> split(const std::string& text) {
 
 int main(int argc, char** argv) {
   using namespace lane_keeping;
-  std::vector<std::string> configs, sets, logs, heldout;
+  std::vector<std::string> configs, sets;
+  struct RunArgument {
+    std::string log, scenario;
+  };
+  std::vector<RunArgument> logs, heldout;
+  std::vector<RunArgument>* last_run = nullptr;  // the run a following --scenario belongs to
   std::string report_dir;
   DiagnosisOptions options;
   bool plots = true, quiet = false;
@@ -60,10 +71,21 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
+    std::vector<RunArgument>* const previous_run = last_run;
+    last_run = nullptr;
     if (arg == "--config") configs.push_back(value());
     else if (arg == "--set") sets.push_back(value());
-    else if (arg == "--log") logs.push_back(value());
-    else if (arg == "--holdout") heldout.push_back(value());
+    else if (arg == "--log" || arg == "--holdout") {
+      last_run = arg == "--log" ? &logs : &heldout;
+      last_run->push_back({value(), ""});
+    } else if (arg == "--scenario") {
+      const std::string file = value();
+      if (previous_run == nullptr) {
+        std::cerr << "lk_gap: --scenario " << file << " must follow the --log or --holdout it belongs to\n";
+        return 2;
+      }
+      previous_run->back().scenario = file;
+    }
     else if (arg == "--report") report_dir = value();
     else if (arg == "--effects") options.effects = split(value());
     else if (arg == "--threads") options.threads = std::atoi(value().c_str());
@@ -90,10 +112,19 @@ int main(int argc, char** argv) {
   }
   registerBagLogReader([](const std::string& path) { return readBagLog(path); });
   try {
-    const SimConfig nominal = loadSimConfig(configs, sets);
-    std::vector<GapLog> training, held;
-    for (const auto& path : logs) training.push_back(readLog(path));
-    for (const auto& path : heldout) held.push_back(readLog(path));
+    FlatParams nominal_params;
+    for (const auto& file : configs) nominal_params.overlayFile(file);
+    for (const auto& assignment : sets) nominal_params.overlayAssignment(assignment);
+    const SimConfig nominal = simConfigFromFlat(nominal_params);
+    auto runsOf = [&](const std::vector<RunArgument>& arguments) {
+      std::vector<GapRun> runs;
+      for (const auto& a : arguments) {
+        runs.push_back(a.scenario.empty() ? gapRun(readLog(a.log), nominal_params, FlatParams{}, "")
+                                          : gapRun(readLog(a.log), nominal_params, a.scenario));
+      }
+      return runs;
+    };
+    const std::vector<GapRun> training = runsOf(logs), held = runsOf(heldout);
     for (const auto& effect : options.effects) {
       bool known = false;
       for (const auto& name : candidateEffectNames()) known = known || name == effect;

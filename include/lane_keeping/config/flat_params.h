@@ -26,6 +26,8 @@ class FlatParams {
   void overlayNode(const YAML::Node& root, const std::string& origin);
   /// Applies "key=value" (value parsed as YAML, so lists work). Throws ConfigError if malformed.
   void overlayAssignment(const std::string& assignment);
+  /// Overlays another set's entries (keeping their locations), by the same replacement rule.
+  void overlayFlat(const FlatParams& other);
 
   const Entry* find(const std::string& key) const;
   bool contains(const std::string& key) const { return find(key) != nullptr; }
@@ -34,6 +36,8 @@ class FlatParams {
 
  private:
   void flatten(const YAML::Node& node, const std::string& prefix, const std::string& origin);
+  /// Sets a leaf, replacing any earlier subtree at `key`.
+  void setLeaf(const std::string& key, Entry entry);
   std::map<std::string, Entry> entries_;
 };
 

@@ -7,6 +7,7 @@
 
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/closed_loop_replay.h"
+#include "lane_keeping/gap/config_change.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/log_signals.h"
 
@@ -19,6 +20,7 @@ class CandidateObjective;
 /// steering angle within `max_steering_angle` and its torque command within `max_torque`.
 struct BoundedLoopRequirement {
   const LogSignals* log;
+  const SimConfig* config;  ///< the run's own configuration (before the change under test)
   double horizon;
   double max_steering_angle;
   double max_torque;
@@ -26,7 +28,7 @@ struct BoundedLoopRequirement {
 
 /// Whether the closed loop of `config` leaves requirement `r`'s bounds on its log: the divergence
 /// monitor with its steering-angle limit lowered to r.max_steering_angle, and the torque command.
-LoopDivergence boundsCheck(SimConfig config, const BoundedLoopRequirement& r);
+LoopDivergence boundsCheck(const ConfigChange& change, const BoundedLoopRequirement& r);
 
 /// The logged runs stayed bounded, so a fitted effect under which the closed loop of the log diverges
 /// contradicts the log, however well it fits the open-loop replays (a column fitted with too little
@@ -38,8 +40,7 @@ LoopDivergence boundsCheck(SimConfig config, const BoundedLoopRequirement& r);
 /// Returns the training logs on which the closed loop of theta leaves those bounds where the nominal's
 /// does not (empty: theta is consistent with the logs), and says so in `note`.
 std::vector<BoundedLoopRequirement> stabilityRequirements(const CandidateObjective& objective, const std::vector<double>& theta,
-                                                          const std::vector<Dataset>& train, const SimConfig& nominal,
-                                                          std::string* note);
+                                                          const std::vector<Dataset>& train, std::string* note);
 
 }  // namespace diagnosis
 }  // namespace lane_keeping

@@ -26,7 +26,8 @@ struct CandidateFit {
   /// Logs on which the fit's closed loop leaves the bounds (empty: it stays bounded, also after a
   /// bounded refit that succeeded).
   std::vector<BoundedLoopRequirement> unbounded_on;
-  SimConfig corrected;
+  SimConfig corrected;  ///< the shared nominal configuration with the fitted effect (the report's overlay)
+  ConfigChange change;  ///< the fitted effect, as a change of each run's own configuration
   double train_before = 0.0, train_after = 0.0;
   double heldout_before = 0.0, heldout_after = 0.0;
   double evidence = 0.0;  ///< held-out reduction of the noise-normalised squared residual (see evidenceOf)

@@ -17,6 +17,8 @@ namespace diagnosis {
 /// The loss of one candidate as a function of its (transformed) parameters.
 class CandidateObjective {
  public:
+  /// @param nominal the shared nominal configuration (for validity and the report's overlay); each data
+  ///        set is replayed under its own run's configuration with the effect applied.
   CandidateObjective(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& data,
                      const ReplayOptions& options, const Sigma1Cache& nominal_sigma1);
 
@@ -24,7 +26,9 @@ class CandidateObjective {
   std::vector<double> toTheta(const double* x) const;
   std::vector<double> toFitSpace(const std::vector<double>& theta) const;
 
-  /// The nominal configuration with the effect at parameters theta (SI).
+  /// The effect at parameters theta (SI), as a change of any run's configuration.
+  ConfigChange changeFor(const std::vector<double>& theta) const;
+  /// The shared nominal configuration with the effect at parameters theta.
   SimConfig configFor(const std::vector<double>& theta) const;
 
   /// Residual vector for parameters theta (SI); false if the configuration is invalid, or if it makes
@@ -46,11 +50,11 @@ class CandidateObjective {
  private:
   static constexpr double kUnstableLoss = 1e100;
 
-  void replayResiduals(const SimConfig& c, std::vector<double>* out) const;
+  void replayResiduals(const ConfigChange& change, std::vector<double>* out) const;
 
-  /// 0 if the closed loop of `c` stays bounded on every required log, else 1 - (time it took to
-  /// diverge) / horizon, in (0, 1].
-  double divergence(const SimConfig& c) const;
+  /// 0 if the closed loop under `change` stays bounded on every required log, else 1 - (time it took
+  /// to diverge) / horizon, in (0, 1].
+  double divergence(const ConfigChange& change) const;
 
   std::vector<BoundedLoopRequirement> stable_on_;
   const CandidateEffect& effect_;

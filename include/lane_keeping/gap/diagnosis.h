@@ -27,21 +27,32 @@
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/gap/config_change.h"
 #include "lane_keeping/gap/diagnosis_artifacts.h"
 #include "lane_keeping/gap/diagnosis_options.h"
 #include "lane_keeping/gap/gap_log.h"
 #include "lane_keeping/gap/gap_report.h"
+#include "lane_keeping/gap/gap_run.h"
 
 namespace lane_keeping {
 
+/// Diagnoses the gap between the runs and their configurations: each run carries the nominal
+/// configuration with its own scenario (gap_run.h). `heldout` runs are used only for scoring; without
+/// them, blocks of the training runs are held out.
+GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
+                      const DiagnosisOptions& options = {}, DiagnosisArtifacts* artifacts = nullptr);
+/// The same with every log under the shared configuration `nominal` (one road and initial state).
 GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
                       const DiagnosisOptions& options = {}, DiagnosisArtifacts* artifacts = nullptr);
 
-/// The held-out gap of `nominal`, then of each of `alternatives`, scored as diagnoseGap scores its
-/// candidates (the same held-out runs or blocks, the same noise reference). The gap benchmark's ceiling:
-/// the gap its truth model leaves, which no candidate fit can be expected to beat.
-std::vector<double> heldoutGaps(const SimConfig& nominal, const std::vector<SimConfig>& alternatives,
-                                const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
-                                const DiagnosisOptions& options = {});
+/// The held-out gap of the runs' own configurations, then with each of `alternatives` applied,
+/// scored as diagnoseGap scores its candidates (the same held-out runs or blocks, the same noise
+/// reference). The gap benchmark's ceiling: the gap its truth model leaves, which no candidate fit can
+/// be expected to beat.
+std::vector<double> heldoutGaps(const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
+                                const std::vector<ConfigChange>& alternatives, const DiagnosisOptions& options = {});
+
+/// Every log under the shared configuration `nominal`.
+std::vector<GapRun> sharedConfigurationRuns(const SimConfig& nominal, const std::vector<GapLog>& logs);
 
 }  // namespace lane_keeping

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/gap/config_change.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/gap_metrics.h"
 #include "lane_keeping/gap/subsystem_replay.h"
@@ -21,13 +22,16 @@ struct Evaluation {
   std::map<std::string, SubsystemReplay> replays;
   std::map<std::string, SubsystemScore> scores;
   std::vector<std::vector<std::pair<double, double>>> sigma1;  ///< chassis estimate per data set
+  /// Per subsystem: the index in its (concatenated) traces where each data set's samples start.
+  std::map<std::string, std::vector<std::size_t>> starts;
 };
 
 using Sigma1Cache = std::vector<std::vector<std::pair<double, double>>>;
 
-/// Replays `subsystems` of `config` over the data sets. The steering replay takes sigma1 from this
-/// configuration's chassis replay, or from `sigma1` when the chassis is not re-run.
-Evaluation evaluate(const SimConfig& config, const std::vector<Dataset>& data, const std::set<std::string>& subsystems,
+/// Replays `subsystems` over the data sets, each under its run's configuration with `change` applied
+/// (empty: as configured). The steering replay takes sigma1 from this configuration's chassis replay,
+/// or from `sigma1` when the chassis is not re-run.
+Evaluation evaluate(const ConfigChange& change, const std::vector<Dataset>& data, const std::set<std::string>& subsystems,
                     const ReplayOptions& options, const Sigma1Cache* sigma1 = nullptr);
 
 /// Every subsystem name (subsystemNames()).
@@ -46,7 +50,7 @@ double gapOf(const std::map<std::string, SubsystemScore>& nominal, const std::ma
 /// benchmark's 44 in-list logs where noise, not a replay limit, held it back (lk_gap_benchmark's
 /// ceiling); with the largest draw two remain (61 and 83 %), the truth's median is 99.8 %, and the 12
 /// no-effect logs' gap falls from 0-0.0029 to 0-0.0022.
-std::map<std::string, double> noiseReferenceExcess(const SimConfig& nominal, const std::vector<Dataset>& data,
+std::map<std::string, double> noiseReferenceExcess(const std::vector<Dataset>& data,
                                                    const ReplayOptions& options, int realisations, int threads,
                                                    std::vector<std::string>* notes);
 

@@ -18,7 +18,8 @@ struct SubsystemGap {
 };
 
 struct WindowShare {
-  double t0 = 0.0, t1 = 0.0;  ///< [s]
+  std::string log;            ///< the run (log source) the window lies in
+  double t0 = 0.0, t1 = 0.0;  ///< [s], the log's own time
   double share = 0.0;         ///< fraction of the residual energy in [t0, t1)
 };
 

@@ -7,6 +7,7 @@
 
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/candidate_fit.h"
+#include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/diagnosis_artifacts.h"
 #include "lane_keeping/gap/diagnosis_options.h"
 #include "lane_keeping/gap/evaluation.h"
@@ -18,10 +19,10 @@ namespace diagnosis {
 
 /// Fills report->how_far: per-subsystem held-out excess before (`nominal_held`) and after (`winner`'s
 /// held-out scores; the nominal's when there is no winner), and — if options.closed_loop — the RMS over
-/// `runs` of the closed-loop replay gap with `nominal` and with the winner's configuration. Notes on
+/// `runs` of the closed-loop replay gap with each run's configuration and with the winner added. Notes on
 /// failed or diverged replays go to report->notes; the first run's overlays to `artifacts` (may be null).
-void howFar(const SimConfig& nominal, const CandidateFit* winner, const Evaluation& nominal_held,
-            const std::vector<std::shared_ptr<const LogSignals>>& runs, const DiagnosisOptions& options,
+void howFar(const CandidateFit* winner, const Evaluation& nominal_held, const std::vector<RunData>& runs,
+            const DiagnosisOptions& options,
             GapReport* report, DiagnosisArtifacts* artifacts);
 
 }  // namespace diagnosis

@@ -15,8 +15,8 @@ namespace diagnosis {
 
 /// `ev` holds the nominal replays and scores (with their references) over `data`; `artifacts` (may be
 /// null) receives the residual and spectrum series of every subsystem.
-GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, const SimConfig& nominal,
-                       double upstream_share, DiagnosisArtifacts* artifacts);
+GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, double upstream_share,
+                       DiagnosisArtifacts* artifacts);
 
 }  // namespace diagnosis
 }  // namespace lane_keeping

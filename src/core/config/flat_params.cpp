@@ -52,17 +52,25 @@ void FlatParams::flatten(const YAML::Node& node, const std::string& prefix, cons
     if (value.IsMap()) {
       flatten(value, key, origin);
     } else {
-      // A later scalar replaces any earlier subtree at the same key and vice versa.
-      for (auto it = entries_.begin(); it != entries_.end();) {
-        if (it->first.rfind(key + ".", 0) == 0) {
-          it = entries_.erase(it);
-        } else {
-          ++it;
-        }
-      }
-      entries_[key] = Entry{YAML::Clone(value), lineOf(origin, value.Mark())};
+      setLeaf(key, Entry{YAML::Clone(value), lineOf(origin, value.Mark())});
     }
   }
+}
+
+void FlatParams::setLeaf(const std::string& key, Entry entry) {
+  // A later scalar replaces any earlier subtree at the same key and vice versa.
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    if (it->first.rfind(key + ".", 0) == 0) {
+      it = entries_.erase(it);
+    } else {
+      ++it;
+    }
+  }
+  entries_[key] = std::move(entry);
+}
+
+void FlatParams::overlayFlat(const FlatParams& other) {
+  for (const auto& [key, entry] : other.entries()) setLeaf(key, Entry{YAML::Clone(entry.value), entry.location});
 }
 
 void FlatParams::overlayAssignment(const std::string& assignment) {

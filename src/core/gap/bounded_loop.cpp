@@ -16,28 +16,29 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 
-LoopDivergence boundsCheck(SimConfig config, const BoundedLoopRequirement& r) {
+LoopDivergence boundsCheck(const ConfigChange& change, const BoundedLoopRequirement& r) {
+  SimConfig config = changed(*r.config, change);
   double& limit = config.simulation.divergence.max_steering_angle;
   limit = std::min(limit, r.max_steering_angle);
   return closedLoopDivergence(config, *r.log, kNaN, r.horizon, r.max_torque);
 }
 
 std::vector<BoundedLoopRequirement> stabilityRequirements(const CandidateObjective& objective, const std::vector<double>& theta,
-                                                          const std::vector<Dataset>& train, const SimConfig& nominal,
-                                                          std::string* note) {
-  std::vector<const LogSignals*> logs;
+                                                          const std::vector<Dataset>& train, std::string* note) {
+  std::vector<const Dataset*> runs;  // each run once (a log split into blocks appears in one data set)
   for (const Dataset& d : train) {
-    if (std::find(logs.begin(), logs.end(), d.log.get()) == logs.end()) logs.push_back(d.log.get());
+    if (std::none_of(runs.begin(), runs.end(), [&](const Dataset* r) { return r->log == d.log; })) runs.push_back(&d);
   }
   std::vector<BoundedLoopRequirement> requirements;
-  for (const LogSignals* log : logs) {
+  for (const Dataset* run : runs) {
+    const LogSignals* log = run->log.get();
     const double span = log->end() - log->start();
     double logged_angle = 0.0, logged_torque = 0.0;
     for (double delta : log->samples(LogSignals::kDelta)) logged_angle = std::max(logged_angle, std::fabs(delta));
     for (double torque : log->samples(LogSignals::kTorque)) logged_torque = std::max(logged_torque, std::fabs(torque));
-    const BoundedLoopRequirement required{log, span, 1.5 * logged_angle + 0.02, 2.0 * logged_torque + 5.0};
-    const LoopDivergence d = boundsCheck(objective.configFor(theta), required);
-    if (!d.diverged || boundsCheck(nominal, required).diverged) continue;
+    const BoundedLoopRequirement required{log, run->config.get(), span, 1.5 * logged_angle + 0.02, 2.0 * logged_torque + 5.0};
+    const LoopDivergence d = boundsCheck(objective.changeFor(theta), required);
+    if (!d.diverged || boundsCheck(nullptr, required).diverged) continue;
     requirements.push_back(required);
     if (!note->empty()) continue;
     std::ostringstream os;

@@ -40,7 +40,7 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
   };
   auto bounded = [&](const std::vector<double>& t) {
     for (const auto& r : requirements) {
-      if (boundsCheck(objective.configFor(t), r).diverged) return false;
+      if (boundsCheck(objective.changeFor(t), r).diverged) return false;
     }
     return true;
   };

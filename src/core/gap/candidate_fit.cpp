@@ -134,6 +134,7 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
   const CandidateEffect& effect = objective.effect();
   fit.theta = theta;
   fit.corrected = objective.configFor(theta);
+  fit.change = objective.changeFor(theta);
   fit.at_bound = false;
   for (std::size_t i = 0; i < theta.size(); ++i) {
     const auto& p = effect.params[i];
@@ -172,9 +173,9 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
   // Scores: training and held-out, all subsystems (unchanged ones keep their nominal scores).
   const std::set<std::string>& changed = objective.subsystems();
   const bool reuse = changed.count("chassis") == 0;
-  const Evaluation train_ev = evaluate(fit.corrected, train, changed, options.replay, reuse ? &nominal_train.sigma1 : nullptr);
+  const Evaluation train_ev = evaluate(fit.change, train, changed, options.replay, reuse ? &nominal_train.sigma1 : nullptr);
   const Evaluation held_ev =
-      evaluate(fit.corrected, heldout, changed, options.replay, reuse ? &nominal_heldout.sigma1 : nullptr);
+      evaluate(fit.change, heldout, changed, options.replay, reuse ? &nominal_heldout.sigma1 : nullptr);
   fit.train_before = combinedGap([&] {
     std::vector<SubsystemScore> v;
     for (const auto& [n, s] : nominal_train.scores) v.push_back(s);
@@ -201,7 +202,7 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nomina
   std::vector<double> theta;
   try {
     theta = leastSquaresFit(objective);
-    fit.unbounded_on = stabilityRequirements(objective, theta, train, nominal, &fit.stability_note);
+    fit.unbounded_on = stabilityRequirements(objective, theta, train, &fit.stability_note);
   } catch (const std::exception& e) {
     fit.note = std::string("fit failed: ") + e.what();
     return fit;

@@ -26,6 +26,11 @@ std::vector<double> CandidateObjective::toFitSpace(const std::vector<double>& th
   return x;
 }
 
+ConfigChange CandidateObjective::changeFor(const std::vector<double>& theta) const {
+  const CandidateEffect* effect = &effect_;
+  return [effect, theta](SimConfig& c) { effect->apply(theta, c); };
+}
+
 SimConfig CandidateObjective::configFor(const std::vector<double>& theta) const {
   SimConfig c = nominal_;
   effect_.apply(theta, c);
@@ -33,29 +38,29 @@ SimConfig CandidateObjective::configFor(const std::vector<double>& theta) const 
 }
 
 bool CandidateObjective::residuals(const std::vector<double>& theta, std::vector<double>* out) const {
-  const SimConfig c = configFor(theta);
-  if (!c.problems().empty() || divergence(c) > 0.0) return false;
-  replayResiduals(c, out);
+  const ConfigChange change = changeFor(theta);
+  if (!configFor(theta).problems().empty() || divergence(change) > 0.0) return false;
+  replayResiduals(change, out);
   return true;
 }
 
 double CandidateObjective::loss(const std::vector<double>& theta) const {
-  const SimConfig c = configFor(theta);
-  if (!c.problems().empty()) return std::numeric_limits<double>::infinity();
-  if (const double d = divergence(c); d > 0.0) return kUnstableLoss * (1.0 + d);
+  if (!configFor(theta).problems().empty()) return std::numeric_limits<double>::infinity();
+  const ConfigChange change = changeFor(theta);
+  if (const double d = divergence(change); d > 0.0) return kUnstableLoss * (1.0 + d);
   std::vector<double> r;
-  replayResiduals(c, &r);
+  replayResiduals(change, &r);
   return sumOfSquares(r);
 }
 
-void CandidateObjective::replayResiduals(const SimConfig& c, std::vector<double>* out) const {
+void CandidateObjective::replayResiduals(const ConfigChange& change, std::vector<double>* out) const {
   const bool reuse = subsystems_.count("chassis") == 0;
-  *out = fitResiduals(evaluate(c, data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr));
+  *out = fitResiduals(evaluate(change, data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr));
 }
 
-double CandidateObjective::divergence(const SimConfig& c) const {
+double CandidateObjective::divergence(const ConfigChange& change) const {
   for (const BoundedLoopRequirement& s : stable_on_) {
-    const LoopDivergence d = boundsCheck(c, s);
+    const LoopDivergence d = boundsCheck(change, s);
     if (d.diverged) return std::clamp(1.0 - d.time / s.horizon, 1e-6, 1.0);
   }
   return 0.0;

@@ -21,28 +21,37 @@ namespace lane_keeping {
 
 using namespace diagnosis;
 
-std::vector<double> heldoutGaps(const SimConfig& nominal, const std::vector<SimConfig>& alternatives,
-                                const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
-                                const DiagnosisOptions& options) {
+std::vector<GapRun> sharedConfigurationRuns(const SimConfig& nominal, const std::vector<GapLog>& logs) {
+  std::vector<GapRun> runs;
+  for (const GapLog& log : logs) runs.push_back(gapRun(log, nominal));
+  return runs;
+}
+
+std::vector<double> heldoutGaps(const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
+                                const std::vector<ConfigChange>& alternatives, const DiagnosisOptions& options) {
   if (training.empty()) throw InputError("gap diagnosis: no training log given");
-  nominal.validate();
-  const DataSplit split = splitData(signalsOf(training), signalsOf(heldout), options);
+  const DataSplit split = splitData(prepareRuns(training), prepareRuns(heldout), options);
   const std::set<std::string> all = allSubsystems();
-  Evaluation nominal_held = evaluate(nominal, split.held, all, options.replay);
+  Evaluation nominal_held = evaluate(nullptr, split.held, all, options.replay);
   if (options.noise_reference_draws > 0) {
     std::vector<std::string> notes;
-    setReference(nominal_held.scores, noiseReferenceExcess(nominal, split.held, options.replay,
-                                                           options.noise_reference_draws, options.threads, &notes));
+    setReference(nominal_held.scores,
+                 noiseReferenceExcess(split.held, options.replay, options.noise_reference_draws, options.threads, &notes));
   }
   std::vector<double> gaps{gapOf(nominal_held.scores, {})};
-  for (const SimConfig& config : alternatives) {
-    config.validate();
-    gaps.push_back(gapOf(nominal_held.scores, evaluate(config, split.held, all, options.replay).scores));
+  for (const ConfigChange& change : alternatives) {
+    gaps.push_back(gapOf(nominal_held.scores, evaluate(change, split.held, all, options.replay).scores));
   }
   return gaps;
 }
 
 GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
+                      const DiagnosisOptions& options, DiagnosisArtifacts* artifacts) {
+  return diagnoseGap(nominal, sharedConfigurationRuns(nominal, training), sharedConfigurationRuns(nominal, heldout),
+                     options, artifacts);
+}
+
+GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
                       const DiagnosisOptions& options, DiagnosisArtifacts* artifacts) {
   if (training.empty()) throw InputError("gap diagnosis: no training log given");
   nominal.validate();
@@ -54,48 +63,46 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   auto secondsSince = [](Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); };
 
   // ---- 1. Data: training and held-out runs, or blocks of the logs (diagnosis_data.h) ------------
-  std::vector<std::shared_ptr<const LogSignals>> train_logs, held_logs;
-  for (const auto& log : training) {
-    train_logs.push_back(std::make_shared<LogSignals>(log));
-    report.logs.push_back(log.source);
-    report.rows_used += log.size();
-    report.rows_skipped += log.rows_skipped;
-    for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
+  for (const auto* runs : {&training, &heldout}) {
+    for (const GapRun& run : *runs) {
+      const GapLog& log = run.log;
+      (runs == &training ? report.logs : report.heldout).push_back(log.source);
+      report.rows_used += log.size();
+      report.rows_skipped += log.rows_skipped;
+      for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
+      if (!run.scenario.empty()) report.notes.push_back(log.source + ": scenario " + run.scenario);
+      if (run.initial_from_log) {
+        report.notes.push_back(log.source + ": initial state not configured, taken from the log's first samples");
+      }
+    }
   }
-  for (const auto& log : heldout) {
-    held_logs.push_back(std::make_shared<LogSignals>(log));
-    report.heldout.push_back(log.source);
-    report.rows_used += log.size();
-    report.rows_skipped += log.rows_skipped;
-    for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
-  }
-  const DataSplit split = splitData(train_logs, held_logs, options);
+  const std::vector<RunData> train_runs = prepareRuns(training), held_runs = prepareRuns(heldout);
+  const DataSplit split = splitData(train_runs, held_runs, options);
   const std::vector<Dataset>& train = split.train;
   const std::vector<Dataset>& held = split.held;
-  if (held_logs.empty()) report.heldout = split.held_blocks;
+  if (heldout.empty()) report.heldout = split.held_blocks;
 
   // ---- 2. Where: the nominal replays, net of the noise-only reference (evaluation.h, where_analysis.h)
   say("replaying subsystems with the nominal model");
   const Clock::time_point where_start = Clock::now();
   const std::set<std::string> all = allSubsystems();
-  Evaluation nominal_train = evaluate(nominal, train, all, options.replay);
-  Evaluation nominal_held = evaluate(nominal, held, all, options.replay);
+  Evaluation nominal_train = evaluate(nullptr, train, all, options.replay);
+  Evaluation nominal_held = evaluate(nullptr, held, all, options.replay);
   std::map<std::string, double> reference;
   if (options.noise_reference_draws > 0) {
     // On held-out data, where shrink is measured; the training blocks (or runs) have the same noise
     // levels and sampling, so their gaps use the same reference (and so does the "where" report).
     say("replaying the noise-only reference (nominal closed loop with the logs' noise levels)");
-    reference =
-        noiseReferenceExcess(nominal, held, options.replay, options.noise_reference_draws, options.threads, &report.notes);
+    reference = noiseReferenceExcess(held, options.replay, options.noise_reference_draws, options.threads, &report.notes);
     setReference(nominal_train.scores, reference);
     setReference(nominal_held.scores, reference);
   }
   std::vector<Dataset> everything = train;
   everything.insert(everything.end(), held.begin(), held.end());
   // (For the "where" report, the union of training and held-out data.)
-  Evaluation nominal_all = evaluate(nominal, everything, all, options.replay);
+  Evaluation nominal_all = evaluate(nullptr, everything, all, options.replay);
   setReference(nominal_all.scores, reference);
-  report.where = whereAnalysis(nominal_all, everything, nominal, options.upstream_share, artifacts);
+  report.where = whereAnalysis(nominal_all, everything, options.upstream_share, artifacts);
   const double gap_before = gapOf(nominal_held.scores, {});
   report.wall_seconds.emplace_back("where", secondsSince(where_start));
 
@@ -139,7 +146,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
   }
   if (options.closed_loop) say("closed-loop replays");
   const Clock::time_point how_far_start = Clock::now();
-  howFar(nominal, winner, nominal_held, held_logs.empty() ? train_logs : held_logs, options, &report, artifacts);
+  howFar(winner, nominal_held, heldout.empty() ? train_runs : held_runs, options, &report, artifacts);
   if (options.closed_loop) report.wall_seconds.emplace_back("how_far", secondsSince(how_far_start));
   say("done");
   return report;

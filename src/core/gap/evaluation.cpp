@@ -14,12 +14,12 @@ namespace {
 
 /// The noise-only reference of each data set (same segments, noise drawn from `seed`), or empty with
 /// a note if the nominal closed loop cannot cover a log.
-std::vector<Dataset> noiseReferenceData(const SimConfig& nominal, const std::vector<Dataset>& data, unsigned seed,
-                                        std::vector<std::string>* notes) {
+std::vector<Dataset> noiseReferenceData(const std::vector<Dataset>& data, unsigned seed, std::vector<std::string>* notes) {
   std::vector<Dataset> out;
   for (const Dataset& set : data) {
     try {
-      out.push_back({std::make_shared<LogSignals>(noiseReferenceLog(nominal, *set.log, seed++)), set.segments});
+      out.push_back({std::make_shared<LogSignals>(noiseReferenceLog(*set.config, *set.log, seed++)), set.config,
+                     set.segments});
     } catch (const LaneKeepingError& e) {
       notes->push_back(std::string(e.what()) + "; the gap is not corrected for noise propagation");
       return {};
@@ -30,19 +30,21 @@ std::vector<Dataset> noiseReferenceData(const SimConfig& nominal, const std::vec
 
 }  // namespace
 
-Evaluation evaluate(const SimConfig& config, const std::vector<Dataset>& data, const std::set<std::string>& subsystems,
+Evaluation evaluate(const ConfigChange& change, const std::vector<Dataset>& data, const std::set<std::string>& subsystems,
                     const ReplayOptions& options, const Sigma1Cache* sigma1) {
   Evaluation ev;
   const bool chassis = subsystems.count("chassis") > 0;
   const bool steering = subsystems.count("steering") > 0;
   for (std::size_t d = 0; d < data.size(); ++d) {
     const Dataset& set = data[d];
+    const SimConfig config = changed(*set.config, change);
     std::vector<std::pair<double, double>> s1;
     if (chassis || (steering && sigma1 == nullptr)) {
       SubsystemReplay r = replayChassis(config, *set.log, set.segments, options);
       s1 = r.sigma1_estimate;
       if (chassis) {
         auto it = ev.replays.find("chassis");
+        ev.starts["chassis"].push_back(it == ev.replays.end() || it->second.traces.empty() ? 0 : it->second.traces[0].t.size());
         if (it == ev.replays.end()) {
           ev.replays["chassis"] = std::move(r);
         } else {
@@ -59,6 +61,7 @@ Evaluation evaluate(const SimConfig& config, const std::vector<Dataset>& data, c
       SubsystemReplay r = name == std::string("steering") ? replaySteering(config, *set.log, set.segments, options, &s1)
                                                           : replaySubsystem(name, config, *set.log, set.segments, options);
       auto it = ev.replays.find(name);
+      ev.starts[name].push_back(it == ev.replays.end() || it->second.traces.empty() ? 0 : it->second.traces[0].t.size());
       if (it == ev.replays.end()) {
         ev.replays[name] = std::move(r);
       } else {
@@ -86,17 +89,16 @@ double gapOf(const std::map<std::string, SubsystemScore>& nominal, const std::ma
   return combinedGap(scores);
 }
 
-std::map<std::string, double> noiseReferenceExcess(const SimConfig& nominal, const std::vector<Dataset>& data,
+std::map<std::string, double> noiseReferenceExcess(const std::vector<Dataset>& data,
                                                    const ReplayOptions& options, int realisations, int threads,
                                                    std::vector<std::string>* notes) {
   std::vector<std::map<std::string, SubsystemScore>> scores(realisations);
   std::vector<bool> ok(realisations, false);
   std::vector<std::vector<std::string>> draw_notes(realisations);
   parallelFor(static_cast<std::size_t>(realisations), threads, [&](std::size_t k) {
-    const std::vector<Dataset> reference =
-        noiseReferenceData(nominal, data, 9001u + 1000u * static_cast<unsigned>(k), &draw_notes[k]);
+    const std::vector<Dataset> reference = noiseReferenceData(data, 9001u + 1000u * static_cast<unsigned>(k), &draw_notes[k]);
     if (reference.empty()) return;
-    scores[k] = evaluate(nominal, reference, allSubsystems(), options).scores;
+    scores[k] = evaluate(nullptr, reference, allSubsystems(), options).scores;
     ok[k] = true;
   });
   std::map<std::string, double> largest;

@@ -4,7 +4,7 @@
 //   { "format": "lane_keeping.gap_report", "version": 1,
 //     "logs": [..], "heldout": [..], "rows_used": N, "rows_skipped": N, "notes": [..],
 //     "where":   { "subsystem", "subsystems": [{"name", "nrmse", "noise_floor", "outputs": [..]}],
-//                  "windows": [{"t0", "t1", "share"}], "bands": [{"f0", "f1", "share"}],
+//                  "windows": [{"log", "t0", "t1", "share"}], "bands": [{"f0", "f1", "share"}],
 //                  "regimes": [{"variable", "lo", "hi", "share", "time_share"}] },
 //     "ranking": [{"effect", "params": {}, "param_sigma": {}, "config": {"key": "value"},
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
@@ -57,7 +57,7 @@ OrderedJson toJson(const GapWhere& w) {
   }
   out["windows"] = OrderedJson::array();
   for (const WindowShare& s : w.windows)
-    out["windows"].push_back({{"t0", number(s.t0)}, {"t1", number(s.t1)}, {"share", number(s.share)}});
+    out["windows"].push_back({{"log", s.log}, {"t0", number(s.t0)}, {"t1", number(s.t1)}, {"share", number(s.share)}});
   out["bands"] = OrderedJson::array();
   for (const BandShare& s : w.bands)
     out["bands"].push_back({{"f0", number(s.f0)}, {"f1", number(s.f1)}, {"share", number(s.share)}});
@@ -296,6 +296,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   });
   r.forEach(w, wp, "windows", true, [&](const Json& e, const std::string& p) {
     WindowShare s;
+    r.get(e, p, "log", &s.log);
     r.get(e, p, "t0", &s.t0, true);
     r.get(e, p, "t1", &s.t1, true);
     r.get(e, p, "share", &s.share, true);

@@ -159,10 +159,10 @@ void writeWhere(std::ostream& out, const GapReport& r) {
     out << "\n";
   }
   if (!w.windows.empty()) {
-    out << "Time windows carrying most of the residual energy:\n\n| t0 [s] | t1 [s] | share |\n|---:|---:|---:|\n";
+    out << "Time windows carrying most of the residual energy:\n\n| log | t0 [s] | t1 [s] | share |\n|---|---:|---:|---:|\n";
     for (std::size_t i = 0; i < w.windows.size() && i < kWindowsShown; ++i) {
       const WindowShare& s = w.windows[i];
-      out << "| " << num(s.t0) << " | " << num(s.t1) << " | " << percent(s.share) << " |\n";
+      out << "| " << s.log << " | " << num(s.t0) << " | " << num(s.t1) << " | " << percent(s.share) << " |\n";
     }
     if (w.windows.size() > kWindowsShown)
       out << "\n(" << w.windows.size() - kWindowsShown << " more windows in report.json)\n";

@@ -13,8 +13,8 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 
-void howFar(const SimConfig& nominal, const CandidateFit* winner, const Evaluation& nominal_held,
-            const std::vector<std::shared_ptr<const LogSignals>>& runs, const DiagnosisOptions& options,
+void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
+            const std::vector<RunData>& runs, const DiagnosisOptions& options,
             GapReport* report, DiagnosisArtifacts* artifacts) {
   for (const auto& [name, score] : nominal_held.scores) {
     report->how_far.subsystems_before[name] = score.excess;
@@ -27,10 +27,11 @@ void howFar(const SimConfig& nominal, const CandidateFit* winner, const Evaluati
     double before = 0.0, after = 0.0;
     int counted = 0;
     for (std::size_t i = 0; i < runs.size(); ++i) {
-      const Evaluation chassis = evaluate(nominal, wholeLogs({runs[i]}, 0.0), {"chassis"}, options.replay);
+      const LogSignals& log = *runs[i].log;
+      const Evaluation chassis = evaluate(nullptr, wholeLogs({runs[i]}, 0.0), {"chassis"}, options.replay);
       const double s1 = chassis.sigma1.empty() || chassis.sigma1[0].empty() ? kNaN : chassis.sigma1[0].front().second;
-      const ClosedLoopReplay b = closedLoopReplay(nominal, *runs[i], s1);
-      const ClosedLoopReplay a = winner ? closedLoopReplay(winner->corrected, *runs[i], s1) : b;
+      const ClosedLoopReplay b = closedLoopReplay(*runs[i].config, log, s1);
+      const ClosedLoopReplay a = winner ? closedLoopReplay(changed(*runs[i].config, winner->change), log, s1) : b;
       if (!b.note.empty()) report->notes.push_back("nominal " + b.note);
       if (winner && !a.note.empty()) report->notes.push_back("corrected " + a.note);
       if (std::isfinite(b.gap) && std::isfinite(a.gap)) {
@@ -42,9 +43,9 @@ void howFar(const SimConfig& nominal, const CandidateFit* winner, const Evaluati
         artifacts->overlay_t = b.t;
         artifacts->overlay["y_real"] = {};
         for (double t : b.t) {
-          artifacts->overlay["y_real"].push_back(runs[i]->at(LogSignals::kY, t));
-          artifacts->overlay["yaw_rate_real"].push_back(runs[i]->at(LogSignals::kYawRate, t));
-          artifacts->overlay["delta_real"].push_back(runs[i]->at(LogSignals::kDelta, t));
+          artifacts->overlay["y_real"].push_back(log.at(LogSignals::kY, t));
+          artifacts->overlay["yaw_rate_real"].push_back(log.at(LogSignals::kYawRate, t));
+          artifacts->overlay["delta_real"].push_back(log.at(LogSignals::kDelta, t));
         }
         artifacts->overlay["y_nominal"] = b.y;
         artifacts->overlay["yaw_rate_nominal"] = b.yaw_rate;

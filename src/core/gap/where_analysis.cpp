@@ -18,14 +18,18 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 /// Residual energy above the noise floor of each sample of a subsystem: sum over its traces of
-/// max(0, r^2 - floor^2), with the sample times.
-void excessEnergy(const SubsystemReplay& replay, const SubsystemScore& score, std::vector<double>* t, std::vector<double>* e) {
+/// max(0, r^2 - floor^2), with the sample times and the data set each sample belongs to.
+void excessEnergy(const SubsystemReplay& replay, const SubsystemScore& score, const std::vector<std::size_t>& starts,
+                  std::vector<double>* t, std::vector<double>* e, std::vector<std::size_t>* set) {
   for (std::size_t k = 0; k < replay.traces.size(); ++k) {
     const auto r = replay.traces[k].residual();
     const double f2 = score.traces[k].floor * score.traces[k].floor;
+    std::size_t d = 0;
     for (std::size_t i = 0; i < r.size(); ++i) {
+      while (d + 1 < starts.size() && i >= starts[d + 1]) ++d;
       t->push_back(replay.traces[k].t[i]);
       e->push_back(std::max(0.0, r[i] * r[i] - f2) / std::max<std::size_t>(1, r.size()));
+      set->push_back(d);
     }
   }
 }
@@ -100,8 +104,8 @@ constexpr double kUpstreamSignalToNoise = 2.0;
 
 }  // namespace
 
-GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, const SimConfig& nominal,
-                       double upstream_share, DiagnosisArtifacts* artifacts) {
+GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, double upstream_share,
+                       DiagnosisArtifacts* artifacts) {
   GapWhere where;
   double best = -1.0;
   for (const std::string& name : subsystemNames()) {
@@ -138,25 +142,38 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, c
   const SubsystemReplay& replay = ev.replays.at(where.subsystem);
   const SubsystemScore& score = ev.scores.at(where.subsystem);
 
-  // Windows: excess energy per time window of the dominant subsystem.
+  // Windows: excess energy per time window of the dominant subsystem, in each run's own time (runs
+  // of different roads share times; a log split into blocks is one run).
   std::vector<double> t, e;
-  excessEnergy(replay, score, &t, &e);
-  double t_min = std::numeric_limits<double>::infinity(), t_max = -t_min, total = 0.0;
+  std::vector<std::size_t> set;
+  const auto starts_it = ev.starts.find(where.subsystem);
+  excessEnergy(replay, score, starts_it == ev.starts.end() ? std::vector<std::size_t>{} : starts_it->second, &t, &e, &set);
+  double total = 0.0;
+  for (double x : e) total += x;
+  std::map<const LogSignals*, std::pair<double, double>> span;  // per run: first and last sample time
   for (std::size_t i = 0; i < t.size(); ++i) {
-    t_min = std::min(t_min, t[i]);
-    t_max = std::max(t_max, t[i]);
-    total += e[i];
+    const LogSignals* log = data[set[i]].log.get();
+    auto it = span.find(log);
+    if (it == span.end()) span[log] = {t[i], t[i]};
+    else it->second = {std::min(it->second.first, t[i]), std::max(it->second.second, t[i])};
   }
-  if (total > 0.0 && t_max > t_min) {
-    const double width = std::max(0.5, (t_max - t_min) / 24.0);
-    const int bins = static_cast<int>(std::ceil((t_max - t_min) / width + 1e-9));
-    std::vector<double> energy(std::max(1, bins), 0.0);
-    for (std::size_t i = 0; i < t.size(); ++i) {
-      energy[std::min(bins - 1, static_cast<int>((t[i] - t_min) / width))] += e[i];
-    }
+  if (total > 0.0) {
     std::vector<WindowShare> windows;
-    for (int b = 0; b < bins; ++b) windows.push_back({t_min + b * width, t_min + (b + 1) * width, energy[b] / total});
-    std::sort(windows.begin(), windows.end(), [](const auto& a, const auto& b) { return a.share > b.share; });
+    for (const auto& [log, range] : span) {
+      const double t_min = range.first, t_max = range.second;
+      if (!(t_max > t_min)) continue;
+      const double width = std::max(0.5, (t_max - t_min) / 24.0);
+      const int bins = static_cast<int>(std::ceil((t_max - t_min) / width + 1e-9));
+      std::vector<double> energy(std::max(1, bins), 0.0);
+      for (std::size_t i = 0; i < t.size(); ++i) {
+        if (data[set[i]].log.get() != log) continue;
+        energy[std::min(bins - 1, static_cast<int>((t[i] - t_min) / width))] += e[i];
+      }
+      for (int b = 0; b < bins; ++b) {
+        windows.push_back({log->log().source, t_min + b * width, t_min + (b + 1) * width, energy[b] / total});
+      }
+    }
+    std::stable_sort(windows.begin(), windows.end(), [](const auto& a, const auto& b) { return a.share > b.share; });
     windows.resize(std::min<std::size_t>(5, windows.size()));
     where.windows = windows;
   }
@@ -199,20 +216,13 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, c
   const std::vector<Binning> binnings{{"slip_angle", {0.0, 0.0087, 0.0175, 0.035, 0.07, 1e9}},
                                       {"lateral_acceleration", {0.0, 0.5, 1.0, 2.0, 4.0, 1e9}},
                                       {"steering_rate", {0.0, 0.02, 0.05, 0.1, 0.3, 1e9}}};
-  const double b_front = nominal.vehicle.cgToFrontAxle(), V = nominal.vehicle.speed;
   for (const auto& binning : binnings) {
     std::vector<double> energy(binning.edges.size() - 1, 0.0), count(binning.edges.size() - 1, 0.0);
     double e_sum = 0.0, n_sum = 0.0;
     for (std::size_t i = 0; i < t.size(); ++i) {
-      // Find the data set holding t[i] (segments do not overlap across data sets in time order).
-      const LogSignals* log = nullptr;
-      for (const auto& d : data) {
-        if (t[i] >= d.log->start() && t[i] <= d.log->end()) {
-          log = d.log.get();
-          break;
-        }
-      }
-      if (log == nullptr) continue;
+      const LogSignals* log = data[set[i]].log.get();
+      const SimConfig& config = *data[set[i]].config;
+      const double b_front = config.vehicle.cgToFrontAxle(), V = config.vehicle.speed;
       double value = 0.0;
       if (binning.name == "slip_angle") {
         value = std::fabs(log->at(LogSignals::kDelta, t[i]) -

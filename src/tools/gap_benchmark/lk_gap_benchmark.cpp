@@ -136,7 +136,8 @@ void ceiling(const std::string& dir, const std::string& filter, int threads) {
     const GapLog log = readCsvLog(dir + "/" + log_files.at(c.id));
     DiagnosisOptions options;
     options.threads = threads;
-    const std::vector<double> gaps = heldoutGaps(nominal, {benchmarkTruth(c)}, {log}, {}, options);
+    const std::vector<double> gaps =
+        heldoutGaps(sharedConfigurationRuns(nominal, {log}), {}, {assignmentsChange(c.truth_overlay)}, options);
     const double shrink = gaps[0] > 0.0 ? 1.0 - gaps[1] / gaps[0] : 0.0;
     makeDir(dir + "/reports/" + c.id);
     writeJson(dir + "/reports/" + c.id + "/ceiling.json",

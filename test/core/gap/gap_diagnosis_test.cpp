@@ -152,7 +152,7 @@ TEST(GapDiagnosis, ReportFieldsAreFilled) {
 }
 
 TEST(GapDiagnosis, BadInputIsAClearError) {
-  EXPECT_THROW(diagnoseGap(SimConfig{}, {}, {}, {}), InputError);
+  EXPECT_THROW(diagnoseGap(SimConfig{}, std::vector<GapLog>{}, std::vector<GapLog>{}, {}), InputError);
   try {
     readLog("/tmp/lk_gap_no_such_file.bag");
     FAIL();

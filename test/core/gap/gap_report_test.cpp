@@ -46,7 +46,7 @@ GapReport sampleReport() {
                         {"chassis", 0.35, 0.012, {"yaw_rate", "psi", "y", "ay"}},
                         {"tracker", 0.001, 0.0005, {"delta_des"}},
                         {"actuator", 0.004, 0.001, {"torque"}}};
-  r.where.windows = {{12.5, 14.0, 0.41}, {3.0, 4.5, 0.2}};
+  r.where.windows = {{"run.csv", 12.5, 14.0, 0.41}, {"run.csv", 3.0, 4.5, 0.2}};
   r.where.bands = {{0.0, 0.5, 0.1}, {0.5, 2.0, 0.7}, {2.0, 10.0, 0.2}};
   r.where.regimes = {{"slip_angle", 0.02, 0.05, 0.6, 0.2}, {"lateral_acceleration", 0.0, 2.0, 0.1, 0.5}};
   RankedEffect a;
@@ -107,6 +107,7 @@ void expectSame(const GapReport& a, const GapReport& b) {
   }
   ASSERT_EQ(a.where.windows.size(), b.where.windows.size());
   for (std::size_t i = 0; i < a.where.windows.size(); ++i) {
+    EXPECT_EQ(a.where.windows[i].log, b.where.windows[i].log);
     expectSameDouble(a.where.windows[i].t0, b.where.windows[i].t0, "t0");
     expectSameDouble(a.where.windows[i].t1, b.where.windows[i].t1, "t1");
     expectSameDouble(a.where.windows[i].share, b.where.windows[i].share, "share");

@@ -95,7 +95,8 @@ TEST(NoiseReference, TheTruthModelRemovesTheWholeGapOfAHiddenActuationDelay) {
   }
   const GapLog log = generateBenchmarkLog(c, SensorNoise{}, 500.0);
   const SimConfig nominal = benchmarkNominal("sinusoid");
-  const std::vector<double> gaps = heldoutGaps(nominal, {benchmarkTruth(c)}, {log}, {});
+  const std::vector<double> gaps =
+      heldoutGaps(sharedConfigurationRuns(nominal, {log}), {}, {assignmentsChange(c.truth_overlay)});
   ASSERT_EQ(gaps.size(), 2u);
   ASSERT_GT(gaps[0], 1e-3);
   EXPECT_LT(gaps[1], 0.05 * gaps[0]) << "truth model gap " << gaps[1] << " of " << gaps[0];
