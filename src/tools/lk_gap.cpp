@@ -146,7 +146,8 @@ int main(int argc, char** argv) {
     }
     writeGapReportMarkdown(report_dir, report);
     const GapVerdict& v = report.verdict;
-    std::cout << "verdict: " << v.effect << " (confidence " << v.confidence << ")\n"
+    std::cout << "verdict: " << v.effect << (v.form.empty() ? "" : " (" + v.form + ")") << " (confidence "
+              << v.confidence << ")\n"
               << "held-out gap: " << v.gap_before << " -> " << v.gap_after << " (shrink " << 100.0 * v.shrink << " %)\n"
               << "where: " << report.where.subsystem << "\n"
               << "reason: " << v.reason << "\n"

@@ -34,13 +34,13 @@ void refitBounded(const SimConfig& nominal, const std::vector<Dataset>& train, c
 /// verdict: the refit fits the training data no better than the unconstrained fit, so a candidate whose
 /// unconstrained held-out gap already loses to the best qualifying bounded candidate (or misses the
 /// min_shrink needed), or that does not change the subsystem carrying the gap (`where_subsystem`), or a
-/// gap below the detection threshold, keeps its unconstrained fit marked unbounded (a note says why),
+/// gap the detection test does not confirm (`detected` false), keeps its unconstrained fit marked unbounded (a note says why),
 /// and cannot be the verdict. Returns the wall time of each refit, named for the report.
 std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const SimConfig& nominal, const std::vector<Dataset>& train,
                                                                    const std::vector<Dataset>& heldout,
                                                                    const Evaluation& nominal_train,
                                                                    const Evaluation& nominal_heldout, double gap_before,
-                                                                   const std::string& where_subsystem,
+                                                                   bool detected, const std::string& where_subsystem,
                                                                    const DiagnosisOptions& options,
                                                                    std::vector<CandidateFit>* fits);
 

@@ -2,6 +2,7 @@
 /// The data a diagnosis works on (diagnosis.h, step 1): each run's log as a continuous-time view with
 /// its own configuration (gap_run.h) and the time segments used from it, and the split into training
 /// and held-out data.
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -34,15 +35,32 @@ struct Dataset {
 /// Each run whole, from `margin` seconds after its start.
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin);
 
-/// Training and held-out data: whole runs when held-out runs are given; otherwise alternating blocks
-/// of each log (even blocks train, odd ones are held out), named in `held_blocks`.
+/// Training and held-out data (DESIGN §5 "which"):
+///  * held-out runs given: all training runs train, all held-out runs score;
+///  * several runs, none held out: whole runs are held out — every other run in order of duration
+///    (the longest trains), so each side sees complete manoeuvres;
+///  * one run: alternating blocks (even train, odd held out) cut so that every kind of excitation lies
+///    on both sides. Blocks are equal in "activity", half elapsed time and half the mean of the
+///    normalised cumulative excitations: |steering rate|, |steering torque - its median|, |lateral
+///    acceleration| (or V |yaw rate|) and |delta_des - delta|. Where the log is quiet the blocks are
+///    about block_length long; a transient that holds much of an excitation (the initial correction of
+///    an offset, a saturating lane change) is cut into short blocks (not below min_block_length) that
+///    fall on both sides. Equal-time blocks put the first seconds of a run, often its strongest
+///    excitation, wholly into training: an effect that shows only there (a torque limit hit by the
+///    initial correction) was invisible on held-out data.
+/// `coverage` gives, per excitation kind, the share of it that lies in held-out data.
 struct DataSplit {
   std::vector<Dataset> train, held;
   std::vector<std::string> held_blocks;
+  std::string method;                       ///< "held-out runs", "whole runs" or "excitation-balanced blocks"
+  std::map<std::string, double> coverage;   ///< excitation kind -> held-out share
 };
 
 DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<RunData>& held_runs,
                     const DiagnosisOptions& options);
+
+/// The excitation kinds of a log, each as its magnitude at every sample (the names of DataSplit::coverage).
+std::map<std::string, std::vector<double>> excitations(const LogSignals& log, const SimConfig& config);
 
 }  // namespace diagnosis
 }  // namespace lane_keeping

@@ -11,11 +11,23 @@ namespace lane_keeping {
 
 struct DiagnosisOptions {
   ReplayOptions replay;
-  double block_length = 3.0;        ///< [s] train/held-out blocks when a single log is given
+  /// [s] mean length of the alternating train / held-out blocks of a log when no run is held out; the
+  /// blocks are shorter where the log is more excited (diagnosis_data.h), never below min_block_length
+  double block_length = 3.0;
+  double min_block_length = 0.5;    ///< [s]
   double start_margin = 0.6;        ///< [s] skipped at the start of each log (delayed inputs need history)
   double detection_gap = 1e-3;      ///< nominal held-out gap below which there is nothing to explain
-  int noise_reference_draws = 3;    ///< noise draws of the noise-only reference (0: no reference)
+  /// Draws of the noise-only null (noise_null.h): its largest draw is each subsystem's noise reference,
+  /// and all of them place the tail of the detection test. 19 draws make a Monte Carlo test at 5 %
+  /// (0: no reference, no test).
+  int noise_reference_draws = 19;
+  double false_alarm_rate = 0.05;   ///< alpha of the Monte Carlo tests (detection, residual structure)
   double min_shrink = 0.3;          ///< fraction of the held-out gap a candidate must remove
+  /// A winner is only a partial explanation when subsystems it does not change keep at least this share
+  /// of the held-out gap (squared), or when it removes less than `half_explanation` of the gap and its
+  /// residual keeps structure beyond the noise-only null.
+  double untouched_share = 0.25;
+  double half_explanation = 0.5;
   double min_evidence_per_parameter = 50.0;  ///< held-out evidence a candidate needs per fitted parameter
   double upstream_share = 0.2;      ///< chassis excess (relative to steering) that makes the chassis the "where"
   int threads = 2;                  ///< candidates fitted in parallel

@@ -12,6 +12,7 @@
 #include "lane_keeping/gap/config_change.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/gap_metrics.h"
+#include "lane_keeping/gap/residual_structure.h"
 #include "lane_keeping/gap/subsystem_replay.h"
 
 namespace lane_keeping {
@@ -41,18 +42,10 @@ std::set<std::string> allSubsystems();
 /// nominal score's noise reference: it belongs to the data, not to the model).
 double gapOf(const std::map<std::string, SubsystemScore>& nominal, const std::map<std::string, SubsystemScore>& changed);
 
-/// Reference excess per subsystem: the largest excess of `realisations` noise draws. Near the noise
-/// floor a trace's excess is clipped at zero or not depending on the draw, so the noise-only excess is
-/// 0 or a few thousandths (the benchmark's sinusoid references draw chassis 0, 0, 0.0032; its 12
-/// no-effect logs show chassis 0-0.003, steering 0.0011-0.0022). Subtracting the draws' RMS (as
-/// before) left the excess of every draw above it as "gap" that no model can remove: the truth model
-/// itself - the best any candidate could be - then removed only 56-89 % of the held-out gap on 7 of the
-/// benchmark's 44 in-list logs where noise, not a replay limit, held it back (lk_gap_benchmark's
-/// ceiling); with the largest draw two remain (61 and 83 %), the truth's median is 99.8 %, and the 12
-/// no-effect logs' gap falls from 0-0.0029 to 0-0.0022.
-std::map<std::string, double> noiseReferenceExcess(const std::vector<Dataset>& data,
-                                                   const ReplayOptions& options, int realisations, int threads,
-                                                   std::vector<std::string>* notes);
+/// The residual structure (residual_structure.h) of every replayed subsystem, each against its input:
+/// steering the logged torque, chassis the logged steering angle, tracker the logged lateral position
+/// tau1 back, actuator the logged error delta_des - delta.
+std::map<std::string, ResidualStructure> residualStructures(const Evaluation& ev, const std::vector<Dataset>& data);
 
 /// Stores the reference excess of each subsystem in `scores`.
 void setReference(std::map<std::string, SubsystemScore>& scores, const std::map<std::string, double>& reference);

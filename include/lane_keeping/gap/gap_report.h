@@ -45,6 +45,7 @@ struct GapWhere {
 
 struct RankedEffect {
   std::string effect;                     ///< one of candidateEffectNames()
+  std::string form;                       ///< where the effect sits, for effects with several placements ("" otherwise)
   std::map<std::string, double> params;   ///< fitted parameters, SI units (names documented in README)
   std::map<std::string, double> param_sigma;  ///< 1-sigma uncertainty of each fitted parameter
   std::map<std::string, std::string> config;  ///< the config overlay that adds the effect ("key" -> "value")
@@ -58,14 +59,48 @@ struct RankedEffect {
   bool closed_loop_bounded = true;
 };
 
+/// A candidate that explains part of the gap and leaves structure beyond the noise (the verdict is then
+/// `unexplained`, naming it).
+struct PartialExplanation {
+  std::string effect;            ///< "" when the winner explains the gap
+  std::string form;
+  double share = 0.0;            ///< the gap it removes: the larger of its held-out and training shrink
+  double untouched_share = 0.0;  ///< share of the held-out gap^2 in subsystems it does not change
+  double whiteness_p = 1.0;      ///< Monte Carlo p-value of its residual's whiteness statistic (residual_structure.h)
+  double input_correlation_p = 1.0;  ///< ... of its residual's correlation with the subsystem's input
+};
+
 struct GapVerdict {
   std::string effect;       ///< winning effect, or "unexplained"
+  std::string form;         ///< where the winning effect sits, for effects with several placements
   double confidence = 0.0;  ///< in [0, 1]
   double gap_before = 0.0;  ///< held-out gap without the effect
   double gap_after = 0.0;   ///< held-out gap with the fitted effect
   double shrink = 0.0;      ///< 1 - gap_after / gap_before
   std::string reason;       ///< one sentence: why this verdict
   std::vector<std::string> confusable_with;  ///< effects the data cannot tell apart from the winner
+  PartialExplanation partial;  ///< set when the best candidate explains only part of the gap
+};
+
+/// The calibrated decision "the nominal model misses something" (noise_null.h): the total excess of the
+/// nominal replays against the same statistic of the noise-only null draws.
+struct DetectionTest {
+  double value = 0.0;        ///< sum over subsystems of excess^2
+  double p_value = 1.0;      ///< Monte Carlo p-value among the draws
+  double null_median = 0.0, null_max = 0.0;  ///< of the draws
+  bool detected = false;     ///< p_value <= false_alarm_rate, and the net gap above detection_gap
+};
+
+struct GapDetection {
+  int draws = 0;                   ///< noise-only null draws
+  double false_alarm_rate = 0.05;  ///< alpha
+  DetectionTest heldout, training;
+};
+
+/// How training and held-out data were chosen (diagnosis_data.h).
+struct GapSplit {
+  std::string method;                      ///< held-out runs | whole runs | excitation-balanced blocks
+  std::map<std::string, double> coverage;  ///< excitation kind -> share of it in held-out data
 };
 
 struct ClosedLoopGap {
@@ -84,6 +119,8 @@ struct GapReport {
   std::size_t rows_used = 0;
   std::size_t rows_skipped = 0;
   std::vector<std::string> notes;
+  GapSplit split;
+  GapDetection detection;
   GapWhere where;
   std::vector<RankedEffect> ranking;  ///< best first
   GapVerdict verdict;

@@ -25,10 +25,11 @@ struct WinnerSelection {
 };
 
 /// `ranking` is sorted best first; `changes_where(effect)` says whether an effect changes the subsystem
-/// carrying the gap; `pinned` names the candidates with a parameter pinned at a bound.
+/// carrying the gap; `pinned` names the candidates with a parameter pinned at a bound; those also in
+/// `pinned_within_noise` (their improvement lies inside the noise-only spread) never win.
 WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
                              const std::function<bool(const std::string&)>& changes_where,
                              const std::set<std::string>& pinned, double min_shrink,
-                             double min_evidence_per_parameter);
+                             double min_evidence_per_parameter, const std::set<std::string>& pinned_within_noise = {});
 
 }  // namespace lane_keeping

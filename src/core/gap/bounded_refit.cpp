@@ -79,7 +79,7 @@ std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const SimConf
                                                                    const std::vector<Dataset>& held,
                                                                    const Evaluation& nominal_train,
                                                                    const Evaluation& nominal_held, double gap_before,
-                                                                   const std::string& where_subsystem,
+                                                                   bool detected, const std::string& where_subsystem,
                                                                    const DiagnosisOptions& options,
                                                                    std::vector<CandidateFit>* fits_out) {
   using Clock = std::chrono::steady_clock;
@@ -96,7 +96,7 @@ std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const SimConf
   for (std::size_t i = 0; i < fits.size(); ++i) {
     const CandidateFit& fit = fits[i];
     if (!fit.ok || fit.unbounded_on.empty()) continue;
-    if (gap_before >= options.detection_gap && changesWhere(fit.effect->name) && fit.heldout_after < bar) {
+    if (detected && changesWhere(fit.effect->name) && fit.heldout_after < bar) {
       refit.push_back(i);
     } else {
       char numbers[96];

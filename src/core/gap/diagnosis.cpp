@@ -14,6 +14,8 @@
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/evaluation.h"
 #include "lane_keeping/gap/how_far.h"
+#include "lane_keeping/gap/noise_null.h"
+#include "lane_keeping/gap/partial_explanation.h"
 #include "lane_keeping/gap/verdict.h"
 #include "lane_keeping/gap/where_analysis.h"
 
@@ -34,9 +36,8 @@ std::vector<double> heldoutGaps(const std::vector<GapRun>& training, const std::
   const std::set<std::string> all = allSubsystems();
   Evaluation nominal_held = evaluate(nullptr, split.held, all, options.replay);
   if (options.noise_reference_draws > 0) {
-    std::vector<std::string> notes;
     setReference(nominal_held.scores,
-                 noiseReferenceExcess(split.held, options.replay, options.noise_reference_draws, options.threads, &notes));
+                 noiseNull({}, split.held, options.replay, options.noise_reference_draws, options.threads).largestHeldExcess());
   }
   std::vector<double> gaps{gapOf(nominal_held.scores, {})};
   for (const ConfigChange& change : alternatives) {
@@ -82,18 +83,25 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   const std::vector<Dataset>& held = split.held;
   if (heldout.empty()) report.heldout = split.held_blocks;
 
-  // ---- 2. Where: the nominal replays, net of the noise-only reference (evaluation.h, where_analysis.h)
+  // ---- 2. Where: the nominal replays, the noise-only null, the calibrated test (evaluation.h,
+  //      noise_null.h, where_analysis.h)
+  report.split.method = split.method;
+  report.split.coverage = split.coverage;
   say("replaying subsystems with the nominal model");
   const Clock::time_point where_start = Clock::now();
   const std::set<std::string> all = allSubsystems();
   Evaluation nominal_train = evaluate(nullptr, train, all, options.replay);
   Evaluation nominal_held = evaluate(nullptr, held, all, options.replay);
+  NoiseNull null;
   std::map<std::string, double> reference;
   if (options.noise_reference_draws > 0) {
-    // On held-out data, where shrink is measured; the training blocks (or runs) have the same noise
-    // levels and sampling, so their gaps use the same reference (and so does the "where" report).
-    say("replaying the noise-only reference (nominal closed loop with the logs' noise levels)");
-    reference = noiseReferenceExcess(held, options.replay, options.noise_reference_draws, options.threads, &report.notes);
+    // The training blocks (or runs) have the same noise levels and sampling as the held-out ones, so
+    // their gaps use the same reference (and so does the "where" report).
+    say("replaying the noise-only null (" + std::to_string(options.noise_reference_draws) +
+        " draws of the nominal closed loop with the logs' noise levels)");
+    null = noiseNull(train, held, options.replay, options.noise_reference_draws, options.threads);
+    report.notes.insert(report.notes.end(), null.notes.begin(), null.notes.end());
+    reference = null.largestHeldExcess();
     setReference(nominal_train.scores, reference);
     setReference(nominal_held.scores, reference);
   }
@@ -104,6 +112,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   setReference(nominal_all.scores, reference);
   report.where = whereAnalysis(nominal_all, everything, options.upstream_share, artifacts);
   const double gap_before = gapOf(nominal_held.scores, {});
+  report.detection = detectGap(nominal_train.scores, nominal_held.scores, null, options);
   report.wall_seconds.emplace_back("where", secondsSince(where_start));
 
   // ---- 3. Which: every candidate fitted on training data, scored on held-out data (candidate_fit.h)
@@ -130,14 +139,29 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   // Fits whose closed loop leaves the logged bounds, fitted again under them where that could change
   // the verdict (bounded_refit.h).
   for (const auto& stage : refitWhereTheyCouldWin(nominal, train, held, nominal_train, nominal_held, gap_before,
-                                                  report.where.subsystem, options, &fits)) {
+                                                  report.detection.heldout.detected, report.where.subsystem, options,
+                                                  &fits)) {
     report.wall_seconds.push_back(stage);
   }
   report.wall_seconds.emplace_back("which", secondsSince(which_start));
 
-  // ---- Verdict (verdict.h) ------------------------------------------------------------------------
+  // ---- Verdict (verdict.h, partial_explanation.h) ----------------------------------------------------
   report.ranking = rankFits(fits, nominal, gap_before, &report.notes);
-  report.verdict = decideVerdict(report.ranking, pinnedEffects(fits), report.where.subsystem, gap_before, options);
+  VerdictContext context;
+  context.pinned = pinnedEffects(fits);
+  context.pinned_within_noise = pinnedWithinNoise(report.ranking, context.pinned, null, gap_before);
+  context.where = &report.where;
+  context.gap_before = gap_before;
+  context.detection = report.detection;
+  context.partial_of = [&](const RankedEffect& ranked) {
+    for (const auto& fit : fits) {
+      if (fit.ok && fit.effect->name == ranked.effect) {
+        return partialExplanation(fit, ranked, report.where.subsystem, nominal_held, held, null, gap_before, options);
+      }
+    }
+    return PartialExplanation{};
+  };
+  report.verdict = decideVerdict(report.ranking, context, options);
 
   // ---- 4. How far: the gap before and after the winner (how_far.h) ---------------------------------
   const CandidateFit* winner = nullptr;

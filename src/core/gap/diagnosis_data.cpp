@@ -1,6 +1,7 @@
 #include "lane_keeping/gap/diagnosis_data.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
@@ -27,29 +28,152 @@ std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin) 
   return out;
 }
 
+std::map<std::string, std::vector<double>> excitations(const LogSignals& log, const SimConfig& config) {
+  std::map<std::string, std::vector<double>> out;
+  const auto& rate = log.samples(LogSignals::kDeltaRate);
+  const auto& torque = log.samples(LogSignals::kTorque);
+  const auto& delta = log.samples(LogSignals::kDelta);
+  const auto& delta_des = log.samples(LogSignals::kDeltaDes);
+  const auto& yaw_rate = log.samples(LogSignals::kYawRate);
+  std::vector<double> sorted = torque;
+  std::nth_element(sorted.begin(), sorted.begin() + sorted.size() / 2, sorted.end());
+  const double median_torque = sorted.empty() ? 0.0 : sorted[sorted.size() / 2];
+  const bool with_ay = log.has(LogSignals::kLateralAcceleration);
+  const std::size_t n = log.times().size();
+  auto& steering_rate = out["steering_rate"];
+  auto& steering_torque = out["steering_torque"];
+  auto& lateral_acceleration = out["lateral_acceleration"];
+  auto& tracking = out["steering_error"];
+  for (std::size_t i = 0; i < n; ++i) {
+    steering_rate.push_back(std::fabs(rate[i]));
+    steering_torque.push_back(std::fabs(torque[i] - median_torque));
+    lateral_acceleration.push_back(with_ay ? std::fabs(log.samples(LogSignals::kLateralAcceleration)[i])
+                                           : std::fabs(config.vehicle.speed * yaw_rate[i]));
+    tracking.push_back(std::fabs(delta_des[i] - delta[i]));
+  }
+  return out;
+}
+
+namespace {
+
+/// Cumulative integral (trapezoid) of `values` over `times` from index `first`, normalised to end at 1
+/// (a flat 0 when the integral is 0).
+std::vector<double> normalisedCumulative(const std::vector<double>& times, const std::vector<double>& values,
+                                         std::size_t first) {
+  std::vector<double> c(times.size(), 0.0);
+  for (std::size_t i = first + 1; i < times.size(); ++i) {
+    c[i] = c[i - 1] + 0.5 * (values[i] + values[i - 1]) * (times[i] - times[i - 1]);
+  }
+  const double total = c.back();
+  for (double& v : c) v = total > 0.0 ? v / total : 0.0;
+  return c;
+}
+
+/// Excitation-balanced block boundaries of one log from `t0` on (see DataSplit).
+std::vector<double> balancedBoundaries(const LogSignals& log, const SimConfig& config, double t0,
+                                       const DiagnosisOptions& options) {
+  const auto& times = log.times();
+  const double t_end = log.end() + 1e-9;
+  std::size_t first = 0;
+  while (first + 1 < times.size() && times[first] < t0) ++first;
+  const double span = t_end - t0;
+  const int blocks = std::max(2, static_cast<int>(std::lround(span / options.block_length)));
+  const auto kinds = excitations(log, config);
+  std::vector<double> activity(times.size(), 0.0);
+  for (std::size_t i = first; i < times.size(); ++i) activity[i] = 0.5 * (times[i] - times[first]) / span;
+  for (const auto& [name, values] : kinds) {
+    const std::vector<double> c = normalisedCumulative(times, values, first);
+    for (std::size_t i = first; i < times.size(); ++i) activity[i] += 0.5 * c[i] / static_cast<double>(kinds.size());
+  }
+  const double total = activity.back() > 0.0 ? activity.back() : 1.0;
+  std::vector<double> bounds{t0};
+  std::size_t i = first;
+  for (int b = 1; b < blocks; ++b) {
+    const double target = total * b / blocks;
+    while (i + 1 < times.size() && activity[i] < target) ++i;
+    const double t = times[i];
+    if (t - bounds.back() >= options.min_block_length && t_end - t >= options.min_block_length) bounds.push_back(t);
+  }
+  bounds.push_back(t_end);
+  return bounds;
+}
+
+/// Held-out share of each excitation kind, over the data sets' segments.
+std::map<std::string, double> heldCoverage(const std::vector<Dataset>& train, const std::vector<Dataset>& held) {
+  std::map<std::string, double> train_sum, held_sum;
+  auto add = [](const std::vector<Dataset>& sets, std::map<std::string, double>* sum) {
+    for (const Dataset& set : sets) {
+      const auto kinds = excitations(*set.log, *set.config);
+      const auto& times = set.log->times();
+      for (const auto& [name, values] : kinds) {
+        double& s = (*sum)[name];
+        for (std::size_t i = 1; i < times.size(); ++i) {
+          for (const TimeSegment& seg : set.segments) {
+            if (times[i] >= seg.t0 && times[i] < seg.t1) {
+              s += 0.5 * (values[i] + values[i - 1]) * (times[i] - times[i - 1]);
+              break;
+            }
+          }
+        }
+      }
+    }
+  };
+  add(train, &train_sum);
+  add(held, &held_sum);
+  std::map<std::string, double> out;
+  for (const auto& [name, h] : held_sum) {
+    const double total = h + train_sum[name];
+    out[name] = total > 0.0 ? h / total : 0.0;
+  }
+  return out;
+}
+
+}  // namespace
+
 DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<RunData>& held_runs,
                     const DiagnosisOptions& options) {
   DataSplit split;
   if (!held_runs.empty()) {
+    split.method = "held-out runs";
     split.train = wholeLogs(train_runs, options.start_margin);
     split.held = wholeLogs(held_runs, options.start_margin);
-    return split;
-  }
-  for (const auto& run : train_runs) {
-    const auto& log = run.log;
-    Dataset tr{log, run.config, {}}, ho{log, run.config, {}};
-    int block = 0;
-    for (double a = log->start() + options.start_margin; a < log->end(); a += options.block_length, ++block) {
-      const TimeSegment s{a, std::min(a + options.block_length, log->end() + 1e-9)};
-      (block % 2 == 0 ? tr : ho).segments.push_back(s);
+  } else if (train_runs.size() >= 2) {
+    split.method = "whole runs";
+    std::vector<std::size_t> order(train_runs.size());
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    auto length = [&](std::size_t i) { return train_runs[i].log->end() - train_runs[i].log->start(); };
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return length(a) > length(b); });
+    std::vector<RunData> train, held;
+    for (std::size_t k = 0; k < order.size(); ++k) (k % 2 == 0 ? train : held).push_back(train_runs[order[k]]);
+    split.train = wholeLogs(train, options.start_margin);
+    split.held = wholeLogs(held, options.start_margin);
+    for (const RunData& run : held) split.held_blocks.push_back(run.log->log().source + " (whole run)");
+  } else {
+    split.method = "excitation-balanced blocks";
+    for (const auto& run : train_runs) {
+      const auto& log = run.log;
+      Dataset tr{log, run.config, {}}, ho{log, run.config, {}};
+      const std::vector<double> bounds = balancedBoundaries(*log, *run.config, log->start() + options.start_margin, options);
+      for (std::size_t b = 0; b + 1 < bounds.size(); ++b) {
+        (b % 2 == 0 ? tr : ho).segments.push_back({bounds[b], bounds[b + 1]});
+      }
+      split.train.push_back(tr);
+      if (!ho.segments.empty()) split.held.push_back(ho);
+      double shortest = bounds.back() - bounds.front(), longest = 0.0;
+      for (std::size_t b = 0; b + 1 < bounds.size(); ++b) {
+        shortest = std::min(shortest, bounds[b + 1] - bounds[b]);
+        longest = std::max(longest, bounds[b + 1] - bounds[b]);
+      }
+      auto tenths = [](double s) { return formatNumber(std::round(10.0 * s) / 10.0); };
+      split.held_blocks.push_back(log->log().source + " (the odd ones of " + std::to_string(bounds.size() - 1) +
+                                  " blocks balanced in excitation, " + tenths(shortest) + "-" + tenths(longest) + " s)");
     }
-    split.train.push_back(tr);
-    if (!ho.segments.empty()) split.held.push_back(ho);
-    split.held_blocks.push_back(log->log().source + " (odd " + formatNumber(options.block_length) + " s blocks)");
+    if (split.held.empty()) {
+      throw InputError("gap diagnosis: the log is too short to hold out a block of " +
+                       formatNumber(options.min_block_length) + " s");
+    }
   }
-  if (split.held.empty()) {
-    throw InputError("gap diagnosis: the log is too short to hold out a block of " + formatNumber(options.block_length) + " s");
-  }
+  split.coverage = heldCoverage(split.train, split.held);
   return split;
 }
 

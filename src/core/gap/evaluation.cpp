@@ -5,30 +5,9 @@
 #include <memory>
 
 #include "lane_keeping/common/errors.h"
-#include "lane_keeping/common/parallel_for.h"
-#include "lane_keeping/gap/noise_reference.h"
 
 namespace lane_keeping {
 namespace diagnosis {
-namespace {
-
-/// The noise-only reference of each data set (same segments, noise drawn from `seed`), or empty with
-/// a note if the nominal closed loop cannot cover a log.
-std::vector<Dataset> noiseReferenceData(const std::vector<Dataset>& data, unsigned seed, std::vector<std::string>* notes) {
-  std::vector<Dataset> out;
-  for (const Dataset& set : data) {
-    try {
-      out.push_back({std::make_shared<LogSignals>(noiseReferenceLog(*set.config, *set.log, seed++)), set.config,
-                     set.segments});
-    } catch (const LaneKeepingError& e) {
-      notes->push_back(std::string(e.what()) + "; the gap is not corrected for noise propagation");
-      return {};
-    }
-  }
-  return out;
-}
-
-}  // namespace
 
 Evaluation evaluate(const ConfigChange& change, const std::vector<Dataset>& data, const std::set<std::string>& subsystems,
                     const ReplayOptions& options, const Sigma1Cache* sigma1) {
@@ -89,30 +68,27 @@ double gapOf(const std::map<std::string, SubsystemScore>& nominal, const std::ma
   return combinedGap(scores);
 }
 
-std::map<std::string, double> noiseReferenceExcess(const std::vector<Dataset>& data,
-                                                   const ReplayOptions& options, int realisations, int threads,
-                                                   std::vector<std::string>* notes) {
-  std::vector<std::map<std::string, SubsystemScore>> scores(realisations);
-  std::vector<bool> ok(realisations, false);
-  std::vector<std::vector<std::string>> draw_notes(realisations);
-  parallelFor(static_cast<std::size_t>(realisations), threads, [&](std::size_t k) {
-    const std::vector<Dataset> reference = noiseReferenceData(data, 9001u + 1000u * static_cast<unsigned>(k), &draw_notes[k]);
-    if (reference.empty()) return;
-    scores[k] = evaluate(nullptr, reference, allSubsystems(), options).scores;
-    ok[k] = true;
-  });
-  std::map<std::string, double> largest;
-  int used = 0;
-  for (int k = 0; k < realisations; ++k) {
-    if (!ok[k]) continue;
-    ++used;
-    for (const auto& [name, score] : scores[k]) largest[name] = std::max(largest[name], score.excess);
+std::map<std::string, ResidualStructure> residualStructures(const Evaluation& ev, const std::vector<Dataset>& data) {
+  std::map<std::string, ResidualStructure> out;
+  for (const auto& [name, replay] : ev.replays) {
+    if (replay.traces.empty()) continue;
+    const auto starts_it = ev.starts.find(name);
+    const std::vector<std::size_t>& starts = starts_it->second;
+    const std::vector<double>& times = replay.traces[0].t;
+    std::vector<double> input(times.size());
+    std::size_t d = 0;
+    for (std::size_t i = 0; i < times.size(); ++i) {
+      while (d + 1 < starts.size() && i >= starts[d + 1]) ++d;
+      const LogSignals& log = *data[d].log;
+      const double t = times[i];
+      if (name == "steering") input[i] = log.at(LogSignals::kTorque, t);
+      else if (name == "chassis") input[i] = log.at(LogSignals::kDelta, t);
+      else if (name == "tracker") input[i] = log.at(LogSignals::kY, t - data[d].config->delays.pose_to_tracker);
+      else input[i] = log.at(LogSignals::kDeltaDes, t) - log.at(LogSignals::kDelta, t);
+    }
+    out[name] = residualStructure(replay, input);
   }
-  if (used == 0) {
-    if (!draw_notes.empty() && !draw_notes[0].empty()) notes->push_back(draw_notes[0].front());
-    return {};
-  }
-  return largest;
+  return out;
 }
 
 void setReference(std::map<std::string, SubsystemScore>& scores, const std::map<std::string, double>& reference) {

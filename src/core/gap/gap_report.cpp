@@ -3,13 +3,18 @@
 // Layout (keys in this order; every GapReport field appears):
 //   { "format": "lane_keeping.gap_report", "version": 1,
 //     "logs": [..], "heldout": [..], "rows_used": N, "rows_skipped": N, "notes": [..],
+//     "split": { "method", "coverage": {kind: held-out share} },
+//     "detection": { "draws", "false_alarm_rate", "heldout": {"value", "p_value", "null_median", "null_max",
+//                    "detected"}, "training": {..} },
 //     "where":   { "subsystem", "subsystems": [{"name", "nrmse", "noise_floor", "outputs": [..]}],
 //                  "windows": [{"log", "t0", "t1", "share"}], "bands": [{"f0", "f1", "share"}],
 //                  "regimes": [{"variable", "lo", "hi", "share", "time_share"}] },
-//     "ranking": [{"effect", "params": {}, "param_sigma": {}, "config": {"key": "value"},
+//     "ranking": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {"key": "value"},
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
 //                  "shrink", "score", "closed_loop_bounded"}],
-//     "verdict": { "effect", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..] },
+//     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..],
+//                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
+//                  (only when a candidate explains part of the gap) },
 //     "how_far": { "before", "after", "shrink", "subsystems_before": {}, "subsystems_after": {},
 //                  "subsystems_noise_reference": {} },
 //     "wall_seconds": [{"stage", "seconds"}] }
@@ -75,6 +80,7 @@ OrderedJson toJson(const GapWhere& w) {
 OrderedJson toJson(const RankedEffect& r) {
   OrderedJson out;
   out["effect"] = r.effect;
+  out["form"] = r.form;
   out["params"] = numberMap(r.params);
   out["param_sigma"] = numberMap(r.param_sigma);
   out["config"] = OrderedJson::object();
@@ -89,15 +95,34 @@ OrderedJson toJson(const RankedEffect& r) {
   return out;
 }
 
+OrderedJson toJson(const PartialExplanation& p) {
+  OrderedJson out;
+  out["effect"] = p.effect;
+  out["form"] = p.form;
+  out["share"] = number(p.share);
+  out["untouched_share"] = number(p.untouched_share);
+  out["whiteness_p"] = number(p.whiteness_p);
+  out["input_correlation_p"] = number(p.input_correlation_p);
+  return out;
+}
+
+OrderedJson toJson(const DetectionTest& d) {
+  return OrderedJson{{"value", number(d.value)},          {"p_value", number(d.p_value)},
+                     {"null_median", number(d.null_median)}, {"null_max", number(d.null_max)},
+                     {"detected", d.detected}};
+}
+
 OrderedJson toJson(const GapVerdict& v) {
   OrderedJson out;
   out["effect"] = v.effect;
+  out["form"] = v.form;
   out["confidence"] = number(v.confidence);
   out["gap_before"] = number(v.gap_before);
   out["gap_after"] = number(v.gap_after);
   out["shrink"] = number(v.shrink);
   out["reason"] = v.reason;
   out["confusable_with"] = v.confusable_with;
+  if (!v.partial.effect.empty()) out["partial"] = toJson(v.partial);
   return out;
 }
 
@@ -121,6 +146,11 @@ OrderedJson toJson(const GapReport& r) {
   out["rows_used"] = r.rows_used;
   out["rows_skipped"] = r.rows_skipped;
   out["notes"] = r.notes;
+  out["split"] = OrderedJson{{"method", r.split.method}, {"coverage", numberMap(r.split.coverage)}};
+  out["detection"] = OrderedJson{{"draws", r.detection.draws},
+                                 {"false_alarm_rate", number(r.detection.false_alarm_rate)},
+                                 {"heldout", toJson(r.detection.heldout)},
+                                 {"training", toJson(r.detection.training)}};
   out["where"] = toJson(r.where);
   out["ranking"] = OrderedJson::array();
   for (const RankedEffect& e : r.ranking) out["ranking"].push_back(toJson(e));
@@ -281,6 +311,28 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   r.get(j, root, "rows_used", &rep.rows_used);
   r.get(j, root, "rows_skipped", &rep.rows_skipped);
   r.get(j, root, "notes", &rep.notes);
+  if (const Json* s = r.member(j, root, "split", false)) {
+    r.get(*s, root + ".split", "method", &rep.split.method);
+    r.get(*s, root + ".split", "coverage", &rep.split.coverage);
+  }
+  if (const Json* d = r.member(j, root, "detection", false)) {
+    const std::string dp = root + ".detection";
+    std::size_t draws = 0;
+    r.get(*d, dp, "draws", &draws);
+    rep.detection.draws = static_cast<int>(draws);
+    r.get(*d, dp, "false_alarm_rate", &rep.detection.false_alarm_rate);
+    for (auto [key, test] : {std::pair<const char*, DetectionTest*>{"heldout", &rep.detection.heldout},
+                             std::pair<const char*, DetectionTest*>{"training", &rep.detection.training}}) {
+      if (const Json* e = r.member(*d, dp, key, false)) {
+        const std::string ep = dp + "." + key;
+        r.get(*e, ep, "value", &test->value);
+        r.get(*e, ep, "p_value", &test->p_value);
+        r.get(*e, ep, "null_median", &test->null_median);
+        r.get(*e, ep, "null_max", &test->null_max);
+        r.get(*e, ep, "detected", &test->detected);
+      }
+    }
+  }
 
   // DESIGN §5 keys are required; the others are optional (defaults when absent).
   const std::string wp = root + ".where";
@@ -322,6 +374,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   r.forEach(j, root, "ranking", true, [&](const Json& e, const std::string& p) {
     RankedEffect s;
     r.get(e, p, "effect", &s.effect, true);
+    r.get(e, p, "form", &s.form);
     r.get(e, p, "params", &s.params, true);
     r.get(e, p, "param_sigma", &s.param_sigma);
     r.get(e, p, "config", &s.config);
@@ -338,12 +391,23 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   const std::string vp = root + ".verdict";
   const Json& v = *r.member(j, root, "verdict", true);
   r.get(v, vp, "effect", &rep.verdict.effect, true);
+  r.get(v, vp, "form", &rep.verdict.form);
   r.get(v, vp, "confidence", &rep.verdict.confidence, true);
   r.get(v, vp, "gap_before", &rep.verdict.gap_before, true);
   r.get(v, vp, "gap_after", &rep.verdict.gap_after, true);
   r.get(v, vp, "shrink", &rep.verdict.shrink, true);
   r.get(v, vp, "reason", &rep.verdict.reason);
   r.get(v, vp, "confusable_with", &rep.verdict.confusable_with);
+  if (const Json* partial = r.member(v, vp, "partial", false)) {
+    const std::string pp = vp + ".partial";
+    PartialExplanation& px = rep.verdict.partial;
+    r.get(*partial, pp, "effect", &px.effect, true);
+    r.get(*partial, pp, "form", &px.form);
+    r.get(*partial, pp, "share", &px.share);
+    r.get(*partial, pp, "untouched_share", &px.untouched_share);
+    r.get(*partial, pp, "whiteness_p", &px.whiteness_p);
+    r.get(*partial, pp, "input_correlation_p", &px.input_correlation_p);
+  }
 
   if (const Json* h = r.member(j, root, "how_far", false)) {
     const std::string hp = root + ".how_far";

@@ -103,13 +103,37 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
   const GapVerdict& v = r.verdict;
   out << "## Verdict\n\n";
   const bool unexplained = v.effect.empty() || v.effect == "unexplained";
-  out << "**" << (unexplained ? std::string("unexplained") : v.effect) << "** (confidence " << num(v.confidence, "%.2f")
-      << ")\n\n";
+  out << "**" << (unexplained ? std::string("unexplained") : v.effect) << "**"
+      << (v.form.empty() ? std::string() : " (" + v.form + ")") << " (confidence " << num(v.confidence, "%.2f") << ")\n\n";
   out << "- held-out gap: " << num(v.gap_before) << " → " << num(v.gap_after) << " (shrink " << percent(v.shrink)
       << ")\n";
   if (!v.reason.empty()) out << "- reason: " << v.reason << "\n";
   out << "- confusable with: " << (v.confusable_with.empty() ? "none reported" : join(v.confusable_with, ", "))
-      << "\n\n";
+      << "\n";
+  const GapDetection& d = r.detection;
+  if (d.draws > 0) {
+    out << "- is there a gap? total excess of the nominal replays against " << d.draws
+        << " noise-only draws (Monte Carlo test at " << percent(d.false_alarm_rate) << "): held-out "
+        << num(d.heldout.value, "%.3g") << ", p = " << num(d.heldout.p_value, "%.3f")
+        << (d.heldout.detected ? " (a gap)" : " (within noise)") << "; training " << num(d.training.value, "%.3g")
+        << ", p = " << num(d.training.p_value, "%.3f") << (d.training.detected ? " (a gap)" : " (within noise)")
+        << "; draws: median " << num(d.heldout.null_median, "%.3g") << ", largest " << num(d.heldout.null_max, "%.3g")
+        << "\n";
+  }
+  if (!v.partial.effect.empty()) {
+    out << "- partial explanation: " << v.partial.effect << (v.partial.form.empty() ? "" : " (" + v.partial.form + ")")
+        << " removes " << percent(v.partial.share) << " of the gap; " << percent(v.partial.untouched_share)
+        << " of it lies in subsystems it does not change; its residual: whiteness p = "
+        << num(v.partial.whiteness_p, "%.3f") << ", correlation with the input p = "
+        << num(v.partial.input_correlation_p, "%.3f") << "\n";
+  }
+  if (!r.split.method.empty()) {
+    std::vector<std::string> coverage;
+    for (const auto& [kind, share] : r.split.coverage) coverage.push_back(kind + " " + percent(share));
+    out << "- held-out data: " << r.split.method << " (held-out share of each excitation: " << join(coverage, ", ")
+        << ")\n";
+  }
+  out << "\n";
 
   const RankedEffect* winner = unexplained ? nullptr : findEffect(r, v.effect);
   if (unexplained) {
@@ -131,14 +155,14 @@ void writeRanking(std::ostream& out, const GapReport& r) {
     out << "No candidate was fitted.\n\n";
     return;
   }
-  out << "| # | effect | fitted parameters (± 1σ, SI) | gap before | gap after | shrink | score |\n";
-  out << "|---:|---|---|---:|---:|---:|---:|\n";
+  out << "| # | effect | form | fitted parameters (± 1σ, SI) | gap before | gap after | shrink | score |\n";
+  out << "|---:|---|---|---|---:|---:|---:|---:|\n";
   for (std::size_t i = 0; i < r.ranking.size(); ++i) {
     const RankedEffect& e = r.ranking[i];
     const bool winner = e.effect == r.verdict.effect;
     const std::string name = cell(e.effect) + (e.closed_loop_bounded ? "" : " (closed loop unbounded)");
-    out << "| " << i + 1 << " | " << (winner ? "**" + name + "**" : name) << " | "
-        << cell(paramsWithSigma(e)) << " | " << num(e.heldout_gap_before) << " | " << num(e.heldout_gap_after) << " | "
+    out << "| " << i + 1 << " | " << (winner ? "**" + name + "**" : name) << " | " << cell(e.form.empty() ? "-" : e.form)
+        << " | " << cell(paramsWithSigma(e)) << " | " << num(e.heldout_gap_before) << " | " << num(e.heldout_gap_after) << " | "
         << percent(e.shrink) << " | " << num(e.score, "%.3g") << " |\n";
   }
   out << "\nshrink = 1 − gap after / gap before, on held-out data. \"closed loop unbounded\": the fitted effect "

@@ -5,7 +5,7 @@ namespace lane_keeping {
 WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
                              const std::function<bool(const std::string&)>& changes_where,
                              const std::set<std::string>& pinned, double min_shrink,
-                             double min_evidence_per_parameter) {
+                             double min_evidence_per_parameter, const std::set<std::string>& pinned_within_noise) {
   auto qualifies = [&](const RankedEffect& r) {
     return r.shrink >= min_shrink && r.score >= min_evidence_per_parameter * static_cast<double>(r.params.size());
   };
@@ -16,7 +16,7 @@ WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
     if (s.top == nullptr) s.top = &r;
     if (!qualifies(r)) continue;
     if (pinned.count(r.effect) != 0) {
-      if (best_pinned == nullptr) best_pinned = &r;
+      if (best_pinned == nullptr && pinned_within_noise.count(r.effect) == 0) best_pinned = &r;
     } else if (s.winner == nullptr) {
       s.winner = &r;
     }
