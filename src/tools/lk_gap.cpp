@@ -17,6 +17,7 @@
 #include "lane_keeping/gap/gap_log.h"
 #include "lane_keeping/gap/gap_run.h"
 #include "lane_keeping/gap/gap_report_markdown.h"
+#include "lane_keeping/gap/log_mapping.h"
 #include "lane_keeping/gap/log_reader.h"
 #include "bag_log_reader.h"
 
@@ -32,10 +33,13 @@ void usage(std::ostream& out) {
          "  --scenario right after a --log or --holdout: that run's own settings (path, initial state, duration,\n"
          "             speed, test signal) overlaid on the nominal; without one the run uses the shared\n"
          "             configuration; an initial state configured nowhere is taken from the log's first samples\n"
+         "  --log-map  right after a --log or --holdout: a file whose log: section maps that log's columns\n"
+         "             (names, scale and offset, time unit, unscaled columns); a log: section may also stand in\n"
+         "             the nominal configuration (every log) or in a scenario (its log)\n"
          "  --holdout  held-out runs for scoring; without them, blocks of the logs are held out\n"
          "  --report   output directory: report.json, report.md, *.csv, *.png\n"
-         "  --noise-reference-draws N   noise draws of the noise-only reference (the gap is net of the largest)\n"
-         "             (default 3; 0 = raw excess, no reference)\n";
+         "  --noise-reference-draws N   draws of the noise-only null: the detection test's tail, and the largest\n"
+         "             is the noise reference the gap is net of (default 19: a test at 5 %; 0 = raw excess, no test)\n";
 }
 
 std::vector<std::string> split(const std::string& text) {
@@ -54,7 +58,7 @@ int main(int argc, char** argv) {
   using namespace lane_keeping;
   std::vector<std::string> configs, sets;
   struct RunArgument {
-    std::string log, scenario;
+    std::string log, scenario, log_map;
   };
   std::vector<RunArgument> logs, heldout;
   std::vector<RunArgument>* last_run = nullptr;  // the run a following --scenario belongs to
@@ -78,13 +82,14 @@ int main(int argc, char** argv) {
     else if (arg == "--log" || arg == "--holdout") {
       last_run = arg == "--log" ? &logs : &heldout;
       last_run->push_back({value(), ""});
-    } else if (arg == "--scenario") {
+    } else if (arg == "--scenario" || arg == "--log-map") {
       const std::string file = value();
       if (previous_run == nullptr) {
-        std::cerr << "lk_gap: --scenario " << file << " must follow the --log or --holdout it belongs to\n";
+        std::cerr << "lk_gap: " << arg << " " << file << " must follow the --log or --holdout it belongs to\n";
         return 2;
       }
-      previous_run->back().scenario = file;
+      (arg == "--scenario" ? previous_run->back().scenario : previous_run->back().log_map) = file;
+      last_run = previous_run;  // --log a.csv --scenario a.yaml --log-map m.yaml
     }
     else if (arg == "--report") report_dir = value();
     else if (arg == "--effects") options.effects = split(value());
@@ -113,14 +118,31 @@ int main(int argc, char** argv) {
   registerBagLogReader([](const std::string& path) { return readBagLog(path); });
   try {
     FlatParams nominal_params;
-    for (const auto& file : configs) nominal_params.overlayFile(file);
+    LogMapping shared_mapping;  // a log: section of the nominal configuration applies to every log
+    for (const auto& file : configs) {
+      nominal_params.overlayFile(file);
+      const LogMapping m = readLogMapping(file);
+      if (!m.source.empty()) shared_mapping = m;
+    }
     for (const auto& assignment : sets) nominal_params.overlayAssignment(assignment);
+    nominal_params.erasePrefix("log.");
     const SimConfig nominal = simConfigFromFlat(nominal_params);
     auto runsOf = [&](const std::vector<RunArgument>& arguments) {
       std::vector<GapRun> runs;
       for (const auto& a : arguments) {
-        runs.push_back(a.scenario.empty() ? gapRun(readLog(a.log), nominal_params, FlatParams{}, "")
-                                          : gapRun(readLog(a.log), nominal_params, a.scenario));
+        // The log's mapping: its own file, else its scenario's log: section, else the nominal's.
+        LogMapping mapping = shared_mapping;
+        if (!a.scenario.empty()) {
+          const LogMapping m = readLogMapping(a.scenario);
+          if (!m.source.empty()) mapping = m;
+        }
+        if (!a.log_map.empty()) {
+          mapping = readLogMapping(a.log_map);
+          if (mapping.source.empty()) throw ConfigError("--log-map " + a.log_map + ": the file has no log: section");
+        }
+        GapLog log = readLog(a.log, mapping);
+        runs.push_back(a.scenario.empty() ? gapRun(std::move(log), nominal_params, FlatParams{}, "")
+                                          : gapRun(std::move(log), nominal_params, a.scenario));
       }
       return runs;
     };
@@ -146,6 +168,8 @@ int main(int argc, char** argv) {
     }
     writeGapReportMarkdown(report_dir, report);
     const GapVerdict& v = report.verdict;
+    for (const auto& s : report.skipped_subsystems) std::cout << "skipped: the " << s.name << " replay (" << s.reason << ")\n";
+    for (const auto& e : report.not_testable) std::cout << "not testable: " << e.effect << " (" << e.reason << ")\n";
     std::cout << "verdict: " << v.effect << (v.form.empty() ? "" : " (" + v.form + ")") << " (confidence "
               << v.confidence << ")\n"
               << "held-out gap: " << v.gap_before << " -> " << v.gap_after << " (shrink " << 100.0 * v.shrink << " %)\n"

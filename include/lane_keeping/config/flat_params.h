@@ -28,6 +28,8 @@ class FlatParams {
   void overlayAssignment(const std::string& assignment);
   /// Overlays another set's entries (keeping their locations), by the same replacement rule.
   void overlayFlat(const FlatParams& other);
+  /// Removes every entry whose key starts with `prefix` (e.g. "log." for a section read elsewhere).
+  void erasePrefix(const std::string& prefix);
 
   const Entry* find(const std::string& key) const;
   bool contains(const std::string& key) const { return find(key) != nullptr; }

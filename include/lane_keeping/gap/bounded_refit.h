@@ -24,9 +24,7 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
 
 /// Fits `fit` again from its least-squares parameters with its closed loop required to stay bounded
 /// on the logs in fit->unbounded_on, and scores it again.
-void refitBounded(const SimConfig& nominal, const std::vector<Dataset>& train, const std::vector<Dataset>& heldout,
-                  const Evaluation& nominal_train, const Evaluation& nominal_heldout, const DiagnosisOptions& options,
-                  CandidateFit* fit);
+void refitBounded(const FitContext& context, const DiagnosisOptions& options, CandidateFit* fit);
 
 /// Bounded refits where they could change the verdict. A least-squares fit whose closed loop leaves the
 /// logged bounds is contradicted by the logs; fitting it again under those bounds costs a closed-loop run
@@ -36,10 +34,7 @@ void refitBounded(const SimConfig& nominal, const std::vector<Dataset>& train, c
 /// min_shrink needed), or that does not change the subsystem carrying the gap (`where_subsystem`), or a
 /// gap the detection test does not confirm (`detected` false), keeps its unconstrained fit marked unbounded (a note says why),
 /// and cannot be the verdict. Returns the wall time of each refit, named for the report.
-std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const SimConfig& nominal, const std::vector<Dataset>& train,
-                                                                   const std::vector<Dataset>& heldout,
-                                                                   const Evaluation& nominal_train,
-                                                                   const Evaluation& nominal_heldout, double gap_before,
+std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitContext& context, double gap_before,
                                                                    bool detected, const std::string& where_subsystem,
                                                                    const DiagnosisOptions& options,
                                                                    std::vector<CandidateFit>* fits);

@@ -16,6 +16,19 @@
 namespace lane_keeping {
 namespace diagnosis {
 
+/// What every candidate is fitted and scored on.
+struct FitContext {
+  const SimConfig* nominal = nullptr;           ///< the shared nominal configuration
+  const std::vector<Dataset>* train = nullptr;  ///< training data
+  const std::vector<Dataset>* held = nullptr;   ///< held-out data
+  const Evaluation* nominal_train = nullptr;    ///< the nominal's replays and scores on them
+  const Evaluation* nominal_held = nullptr;
+  std::set<std::string> available;              ///< the subsystems the logs can feed
+  /// The logs carry what the whole loop needs (the tracker's inputs and output): a fit's closed loop can
+  /// then be checked against them (bounded_loop.h).
+  bool closed_loop_checks = true;
+};
+
 struct CandidateFit {
   const CandidateEffect* effect = nullptr;
   bool ok = false;
@@ -48,15 +61,12 @@ std::vector<double> coordinateFit(const CandidateObjective& objective, std::vect
 std::vector<double> leastSquaresFit(const CandidateObjective& objective);
 
 /// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta.
-void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const std::vector<Dataset>& train,
-              const std::vector<Dataset>& heldout, const Evaluation& nominal_train, const Evaluation& nominal_heldout,
+void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
               const DiagnosisOptions& options, CandidateFit* out);
 
 /// The least-squares fit of one candidate, scored; `unbounded_on` lists the training logs whose
 /// closed loop it makes leave the logged bounds (refitBounded fits it again under them).
-CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& train,
-                          const std::vector<Dataset>& heldout, const Evaluation& nominal_train,
-                          const Evaluation& nominal_heldout, const DiagnosisOptions& options);
+CandidateFit fitCandidate(const CandidateEffect& effect, const FitContext& context, const DiagnosisOptions& options);
 
 }  // namespace diagnosis
 }  // namespace lane_keeping

@@ -19,8 +19,10 @@ class CandidateObjective {
  public:
   /// @param nominal the shared nominal configuration (for validity and the report's overlay); each data
   ///        set is replayed under its own run's configuration with the effect applied.
+  /// @param available the subsystems the logs can feed: the effect is fitted on those it changes.
   CandidateObjective(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& data,
-                     const ReplayOptions& options, const Sigma1Cache& nominal_sigma1);
+                     const ReplayOptions& options, const Sigma1Cache& nominal_sigma1,
+                     const std::set<std::string>& available);
 
   /// Parameters from fit space (log for log-scale ones) to SI.
   std::vector<double> toTheta(const double* x) const;

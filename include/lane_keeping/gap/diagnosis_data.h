@@ -4,6 +4,7 @@
 /// and held-out data.
 #include <map>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -24,6 +25,12 @@ struct RunData {
 };
 
 std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs);
+
+/// The subsystems no run can feed (every run must: data sets are replayed together), each with why —
+/// the columns the first run lacking them does not have (replayUnavailable).
+std::map<std::string, std::string> unavailableSubsystems(const std::vector<RunData>& runs);
+/// The others.
+std::set<std::string> availableSubsystems(const std::vector<RunData>& runs);
 
 /// A run and the time segments of it that a data set uses.
 struct Dataset {

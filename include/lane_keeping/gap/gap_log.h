@@ -1,12 +1,17 @@
 #pragma once
 /// A log of a real (or generated) run, as the gap diagnosis reads it (DESIGN §5).
 ///
-/// Required columns: t, x, y, psi, yaw_rate, delta, delta_des, torque. Optional: v, ay, delta_rate.
-/// t is strictly increasing (any, not necessarily uniform, sampling). Rows holding NaN/Inf in a
-/// column the diagnosis uses are skipped and counted, never silently used.
+/// Only t is required; every other column may be absent (an empty vector): a log of a real car often
+/// lacks the desired steering angle or the torque command, and the diagnosis replays the subsystems
+/// whose inputs and outputs are present (subsystem_replay.h). t is strictly increasing (any, not
+/// necessarily uniform, sampling). Rows holding NaN/Inf in a column the diagnosis uses are skipped and
+/// counted, never silently used.
 #include <cstddef>
+#include <set>
 #include <string>
 #include <vector>
+
+#include "lane_keeping/gap/log_mapping.h"
 
 namespace lane_keeping {
 
@@ -23,11 +28,18 @@ struct GapLog {
   std::vector<double> ay;         ///< optional: lateral acceleration at G [m/s^2] (empty if absent)
   std::vector<double> delta_rate; ///< optional: steering rate [rad/s] (empty if absent)
 
+  /// Schema columns whose units are unknown (a log mapping's `unscaled`, e.g. torque in bus counts):
+  /// present, but not used where their scale matters.
+  std::set<std::string> unscaled;
+  std::string mapping;            ///< the log mapping applied ("" = none)
+
   std::size_t rows_read = 0;      ///< data rows in the file
   std::size_t rows_skipped = 0;   ///< rows dropped for NaN/Inf (counted in the report)
   std::vector<std::string> notes; ///< human-readable remarks (which rows were skipped, and why)
 
   std::size_t size() const { return t.size(); }
+  /// Whether schema column `name` is present (and, with `scaled`, in known units).
+  bool has(const std::string& name, bool scaled = false) const;
   bool hasSpeed() const { return !v.empty(); }
   bool hasLateralAcceleration() const { return !ay.empty(); }
   bool hasSteeringRate() const { return !delta_rate.empty(); }
@@ -38,11 +50,13 @@ struct GapLog {
   GapLog slice(std::size_t begin, std::size_t end) const;
 };
 
-/// Reads a CSV log with a header row. Column order is free; extra columns are ignored.
+/// Reads a CSV log with a header row. Column order is free; extra columns are ignored; columns are found
+/// by their schema names or through `mapping` (log_mapping.h), which also scales them.
 /// Throws InputError naming the file and, where it applies, the line and column: missing file,
-/// empty file, missing required column, unparsable cell, non-increasing t, fewer than 10 valid rows.
+/// empty file, no time column, unparsable cell, non-increasing t, fewer than 10 valid rows; and if a
+/// column the mapping names is not in the file.
 /// Rows with NaN/Inf (or empty cells) in a used column are skipped and counted.
-GapLog readCsvLog(const std::string& path);
+GapLog readCsvLog(const std::string& path, const LogMapping& mapping = {});
 
 /// Writes a GapLog as CSV (the same columns), full precision.
 void writeCsvLog(const std::string& path, const GapLog& log);

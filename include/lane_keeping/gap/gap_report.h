@@ -113,12 +113,26 @@ struct ClosedLoopGap {
   std::map<std::string, double> subsystems_noise_reference;
 };
 
+/// A subsystem the logs cannot feed (a partial log), and why.
+struct SkippedSubsystem {
+  std::string name;
+  std::string reason;
+};
+
+/// A candidate that acts only on skipped subsystems: not testable on these logs (not rejected).
+struct UntestableEffect {
+  std::string effect;
+  std::string reason;
+};
+
 struct GapReport {
   std::vector<std::string> logs;     ///< training logs
   std::vector<std::string> heldout;  ///< held-out logs or segments
   std::size_t rows_used = 0;
   std::size_t rows_skipped = 0;
   std::vector<std::string> notes;
+  std::vector<SkippedSubsystem> skipped_subsystems;  ///< replays the logs cannot feed
+  std::vector<UntestableEffect> not_testable;        ///< candidates acting only on skipped subsystems
   GapSplit split;
   GapDetection detection;
   GapWhere where;

@@ -33,7 +33,8 @@ std::string scenarioKeysDescription();
 
 /// The nominal (`nominal`, as read from its files and --set) with `scenario` overlaid: a YAML file, or
 /// a FlatParams already read (e.g. from a bag). Throws ConfigError naming file:line and key for a key
-/// that is not a per-run setting, and for every problem of the combined configuration.
+/// that is not a per-run setting, and for every problem of the combined configuration. A `log:` section
+/// (a log mapping, log_mapping.h) in either is left to the log reader.
 GapRun gapRun(GapLog log, const FlatParams& nominal, const std::string& scenario_file);
 GapRun gapRun(GapLog log, const FlatParams& nominal, const FlatParams& scenario, const std::string& scenario_source);
 /// A run under the shared configuration (no scenario): initial state as configured.

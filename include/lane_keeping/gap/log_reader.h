@@ -11,8 +11,9 @@ namespace lane_keeping {
 using BagLogReader = std::function<GapLog(const std::string& path)>;
 /// Installs the reader used for *.bag files.
 void registerBagLogReader(BagLogReader reader);
-/// *.csv (any case) -> readCsvLog; *.bag -> the registered bag reader (InputError if none);
-/// anything else -> InputError naming the file.
-GapLog readLog(const std::string& path);
+/// *.csv (any case) -> readCsvLog (with `mapping`); *.bag -> the registered bag reader (InputError if
+/// none; a bag holds the suite's own topics, so a mapping is refused); anything else -> InputError
+/// naming the file.
+GapLog readLog(const std::string& path, const LogMapping& mapping = {});
 
 }  // namespace lane_keeping

@@ -13,6 +13,7 @@
 /// replays, on held-out and on training data separately. The largest draw's excess per subsystem is also
 /// each subsystem's noise reference (SubsystemScore::reference), so that the gap is net of it.
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -37,9 +38,10 @@ struct NoiseNull {
   std::vector<double> trainTotals() const;
 };
 
-/// `draws` realisations (seeded: the same data give the same null), on up to `threads` threads.
-NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset>& held, const ReplayOptions& options,
-                    int draws, int threads);
+/// `draws` realisations (seeded: the same data give the same null) of the replays of `subsystems`, on up
+/// to `threads` threads.
+NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset>& held,
+                    const std::set<std::string>& subsystems, const ReplayOptions& options, int draws, int threads);
 
 /// T = sum over subsystems of excess^2.
 double totalExcessSquared(const std::map<std::string, SubsystemScore>& scores);

@@ -69,6 +69,13 @@ void FlatParams::setLeaf(const std::string& key, Entry entry) {
   entries_[key] = std::move(entry);
 }
 
+void FlatParams::erasePrefix(const std::string& prefix) {
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    if (it->first.rfind(prefix, 0) == 0) it = entries_.erase(it);
+    else ++it;
+  }
+}
+
 void FlatParams::overlayFlat(const FlatParams& other) {
   for (const auto& [key, entry] : other.entries()) setLeaf(key, Entry{YAML::Clone(entry.value), entry.location});
 }

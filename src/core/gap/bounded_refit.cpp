@@ -58,10 +58,9 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
   return theta;
 }
 
-void refitBounded(const SimConfig& nominal, const std::vector<Dataset>& train, const std::vector<Dataset>& heldout,
-                  const Evaluation& nominal_train, const Evaluation& nominal_heldout, const DiagnosisOptions& options,
-                  CandidateFit* fit) {
-  CandidateObjective objective(*fit->effect, nominal, train, options.replay, nominal_train.sigma1);
+void refitBounded(const FitContext& context, const DiagnosisOptions& options, CandidateFit* fit) {
+  CandidateObjective objective(*fit->effect, *context.nominal, *context.train, options.replay,
+                               context.nominal_train->sigma1, context.available);
   std::vector<double> theta;
   bool bounded = false;
   try {
@@ -72,13 +71,10 @@ void refitBounded(const SimConfig& nominal, const std::vector<Dataset>& train, c
     return;
   }
   if (bounded) fit->unbounded_on.clear();
-  scoreFit(objective, theta, train, heldout, nominal_train, nominal_heldout, options, fit);
+  scoreFit(objective, theta, context, options, fit);
 }
 
-std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const SimConfig& nominal, const std::vector<Dataset>& train,
-                                                                   const std::vector<Dataset>& held,
-                                                                   const Evaluation& nominal_train,
-                                                                   const Evaluation& nominal_held, double gap_before,
+std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitContext& context, double gap_before,
                                                                    bool detected, const std::string& where_subsystem,
                                                                    const DiagnosisOptions& options,
                                                                    std::vector<CandidateFit>* fits_out) {
@@ -110,7 +106,7 @@ std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const SimConf
       refit.size(), options.threads,
       [&](std::size_t k) {
         const Clock::time_point start = Clock::now();
-        refitBounded(nominal, train, held, nominal_train, nominal_held, options, &fits[refit[k]]);
+        refitBounded(context, options, &fits[refit[k]]);
         refit_seconds[k] = std::chrono::duration<double>(Clock::now() - start).count();
       },
       [&](std::size_t k) {

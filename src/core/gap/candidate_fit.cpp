@@ -127,10 +127,13 @@ std::vector<double> leastSquaresFit(const CandidateObjective& objective) {
   return theta;
 }
 
-void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const std::vector<Dataset>& train,
-              const std::vector<Dataset>& heldout, const Evaluation& nominal_train, const Evaluation& nominal_heldout,
+void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
               const DiagnosisOptions& options, CandidateFit* out) {
   CandidateFit& fit = *out;
+  const std::vector<Dataset>& train = *context.train;
+  const std::vector<Dataset>& heldout = *context.held;
+  const Evaluation& nominal_train = *context.nominal_train;
+  const Evaluation& nominal_heldout = *context.nominal_held;
   const CandidateEffect& effect = objective.effect();
   fit.theta = theta;
   fit.corrected = objective.configFor(theta);
@@ -193,21 +196,22 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
   fit.ok = true;
 }
 
-CandidateFit fitCandidate(const CandidateEffect& effect, const SimConfig& nominal, const std::vector<Dataset>& train,
-                          const std::vector<Dataset>& heldout, const Evaluation& nominal_train,
-                          const Evaluation& nominal_heldout, const DiagnosisOptions& options) {
+CandidateFit fitCandidate(const CandidateEffect& effect, const FitContext& context, const DiagnosisOptions& options) {
   CandidateFit fit;
   fit.effect = &effect;
-  CandidateObjective objective(effect, nominal, train, options.replay, nominal_train.sigma1);
+  CandidateObjective objective(effect, *context.nominal, *context.train, options.replay, context.nominal_train->sigma1,
+                               context.available);
   std::vector<double> theta;
   try {
     theta = leastSquaresFit(objective);
-    fit.unbounded_on = stabilityRequirements(objective, theta, train, &fit.stability_note);
+    if (context.closed_loop_checks) {
+      fit.unbounded_on = stabilityRequirements(objective, theta, *context.train, &fit.stability_note);
+    }
   } catch (const std::exception& e) {
     fit.note = std::string("fit failed: ") + e.what();
     return fit;
   }
-  scoreFit(objective, theta, train, heldout, nominal_train, nominal_heldout, options, &fit);
+  scoreFit(objective, theta, context, options, &fit);
   return fit;
 }
 

@@ -9,9 +9,11 @@ namespace diagnosis {
 
 CandidateObjective::CandidateObjective(const CandidateEffect& effect, const SimConfig& nominal,
                                        const std::vector<Dataset>& data, const ReplayOptions& options,
-                                       const Sigma1Cache& nominal_sigma1)
+                                       const Sigma1Cache& nominal_sigma1, const std::set<std::string>& available)
     : effect_(effect), nominal_(nominal), data_(data), options_(options), nominal_sigma1_(nominal_sigma1) {
-  subsystems_ = std::set<std::string>(effect.subsystems.begin(), effect.subsystems.end());
+  for (const std::string& s : effect.subsystems) {
+    if (available.count(s)) subsystems_.insert(s);
+  }
 }
 
 std::vector<double> CandidateObjective::toTheta(const double* x) const {

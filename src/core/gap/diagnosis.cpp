@@ -32,12 +32,16 @@ std::vector<GapRun> sharedConfigurationRuns(const SimConfig& nominal, const std:
 std::vector<double> heldoutGaps(const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
                                 const std::vector<ConfigChange>& alternatives, const DiagnosisOptions& options) {
   if (training.empty()) throw InputError("gap diagnosis: no training log given");
-  const DataSplit split = splitData(prepareRuns(training), prepareRuns(heldout), options);
-  const std::set<std::string> all = allSubsystems();
+  const std::vector<RunData> train_runs = prepareRuns(training), held_runs = prepareRuns(heldout);
+  const DataSplit split = splitData(train_runs, held_runs, options);
+  std::vector<RunData> runs = train_runs;
+  runs.insert(runs.end(), held_runs.begin(), held_runs.end());
+  const std::set<std::string> all = availableSubsystems(runs);
   Evaluation nominal_held = evaluate(nullptr, split.held, all, options.replay);
   if (options.noise_reference_draws > 0) {
-    setReference(nominal_held.scores,
-                 noiseNull({}, split.held, options.replay, options.noise_reference_draws, options.threads).largestHeldExcess());
+    setReference(nominal_held.scores, noiseNull({}, split.held, all, options.replay, options.noise_reference_draws,
+                                                options.threads)
+                                          .largestHeldExcess());
   }
   std::vector<double> gaps{gapOf(nominal_held.scores, {})};
   for (const ConfigChange& change : alternatives) {
@@ -78,6 +82,16 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     }
   }
   const std::vector<RunData> train_runs = prepareRuns(training), held_runs = prepareRuns(heldout);
+  std::vector<RunData> runs = train_runs;
+  runs.insert(runs.end(), held_runs.begin(), held_runs.end());
+  // A partial log: the subsystems whose inputs and outputs it lacks are skipped, saying why.
+  for (const auto& [name, why] : unavailableSubsystems(runs)) report.skipped_subsystems.push_back({name, why});
+  const std::set<std::string> all = availableSubsystems(runs);
+  if (all.empty()) {
+    std::string why;
+    for (const auto& s : report.skipped_subsystems) why += "; " + s.name + ": " + s.reason;
+    throw InputError("gap diagnosis: the logs feed no subsystem's replay" + why);
+  }
   const DataSplit split = splitData(train_runs, held_runs, options);
   const std::vector<Dataset>& train = split.train;
   const std::vector<Dataset>& held = split.held;
@@ -89,7 +103,6 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   report.split.coverage = split.coverage;
   say("replaying subsystems with the nominal model");
   const Clock::time_point where_start = Clock::now();
-  const std::set<std::string> all = allSubsystems();
   Evaluation nominal_train = evaluate(nullptr, train, all, options.replay);
   Evaluation nominal_held = evaluate(nullptr, held, all, options.replay);
   NoiseNull null;
@@ -99,7 +112,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     // their gaps use the same reference (and so does the "where" report).
     say("replaying the noise-only null (" + std::to_string(options.noise_reference_draws) +
         " draws of the nominal closed loop with the logs' noise levels)");
-    null = noiseNull(train, held, options.replay, options.noise_reference_draws, options.threads);
+    null = noiseNull(train, held, all, options.replay, options.noise_reference_draws, options.threads);
     report.notes.insert(report.notes.end(), null.notes.begin(), null.notes.end());
     reference = null.largestHeldExcess();
     setReference(nominal_train.scores, reference);
@@ -116,11 +129,31 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   report.wall_seconds.emplace_back("where", secondsSince(where_start));
 
   // ---- 3. Which: every candidate fitted on training data, scored on held-out data (candidate_fit.h)
+  FitContext fit_context;
+  fit_context.nominal = &nominal;
+  fit_context.train = &train;
+  fit_context.held = &held;
+  fit_context.nominal_train = &nominal_train;
+  fit_context.nominal_held = &nominal_held;
+  fit_context.available = all;
+  // The closed loop reproduces a logged run only if the log holds the tracker's inputs and output.
+  fit_context.closed_loop_checks = all.count("tracker") > 0;
+  if (!fit_context.closed_loop_checks) {
+    report.notes.push_back("the fitted effects' closed loops are not checked against the logs (the logs do not hold "
+                           "the tracker's inputs and output)");
+  }
   std::vector<const CandidateEffect*> candidates;
   for (const auto& c : candidateEffects()) {
-    if (options.effects.empty() || std::find(options.effects.begin(), options.effects.end(), c.name) != options.effects.end()) {
-      candidates.push_back(&c);
+    if (!options.effects.empty() && std::find(options.effects.begin(), options.effects.end(), c.name) == options.effects.end()) {
+      continue;
     }
+    if (std::none_of(c.subsystems.begin(), c.subsystems.end(), [&](const std::string& s) { return all.count(s) > 0; })) {
+      std::string changes;
+      for (const auto& s : c.subsystems) changes += (changes.empty() ? "" : ", ") + s;
+      report.not_testable.push_back({c.name, "changes only the " + changes + " replay, which the logs cannot feed"});
+      continue;
+    }
+    candidates.push_back(&c);
   }
   std::vector<CandidateFit> fits(candidates.size());
   std::vector<double> fit_seconds(candidates.size(), 0.0);
@@ -129,7 +162,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
       candidates.size(), options.threads,
       [&](std::size_t i) {
         const Clock::time_point start = Clock::now();
-        fits[i] = fitCandidate(*candidates[i], nominal, train, held, nominal_train, nominal_held, options);
+        fits[i] = fitCandidate(*candidates[i], fit_context, options);
         fit_seconds[i] = secondsSince(start);
       },
       [&](std::size_t i) { say("fitting " + candidates[i]->name); });
@@ -138,9 +171,8 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   }
   // Fits whose closed loop leaves the logged bounds, fitted again under them where that could change
   // the verdict (bounded_refit.h).
-  for (const auto& stage : refitWhereTheyCouldWin(nominal, train, held, nominal_train, nominal_held, gap_before,
-                                                  report.detection.heldout.detected, report.where.subsystem, options,
-                                                  &fits)) {
+  for (const auto& stage : refitWhereTheyCouldWin(fit_context, gap_before, report.detection.heldout.detected,
+                                                  report.where.subsystem, options, &fits)) {
     report.wall_seconds.push_back(stage);
   }
   report.wall_seconds.emplace_back("which", secondsSince(which_start));
@@ -170,7 +202,12 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   }
   if (options.closed_loop) say("closed-loop replays");
   const Clock::time_point how_far_start = Clock::now();
-  howFar(winner, nominal_held, heldout.empty() ? train_runs : held_runs, options, &report, artifacts);
+  DiagnosisOptions how_far_options = options;
+  if (!fit_context.closed_loop_checks && options.closed_loop) {
+    how_far_options.closed_loop = false;
+    report.notes.push_back("how far: no closed-loop replay (the logs do not hold the tracker's inputs and output)");
+  }
+  howFar(winner, nominal_held, heldout.empty() ? train_runs : held_runs, how_far_options, &report, artifacts);
   if (options.closed_loop) report.wall_seconds.emplace_back("how_far", secondsSince(how_far_start));
   say("done");
   return report;

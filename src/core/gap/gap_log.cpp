@@ -32,16 +32,16 @@ struct ColumnSpec {
 const std::vector<ColumnSpec>& columnSpecs() {
   static const std::vector<ColumnSpec> specs{
       {"t", true, &GapLog::t},
-      {"x", true, &GapLog::x},
-      {"y", true, &GapLog::y},
-      {"psi", true, &GapLog::psi},
-      {"yaw_rate", true, &GapLog::yaw_rate},
+      {"x", false, &GapLog::x},
+      {"y", false, &GapLog::y},
+      {"psi", false, &GapLog::psi},
+      {"yaw_rate", false, &GapLog::yaw_rate},
       {"v", false, &GapLog::v},
       {"ay", false, &GapLog::ay},
-      {"delta", true, &GapLog::delta},
+      {"delta", false, &GapLog::delta},
       {"delta_rate", false, &GapLog::delta_rate},
-      {"delta_des", true, &GapLog::delta_des},
-      {"torque", true, &GapLog::torque},
+      {"delta_des", false, &GapLog::delta_des},
+      {"torque", false, &GapLog::torque},
   };
   return specs;
 }
@@ -113,6 +113,13 @@ struct RawRow {
 
 }  // namespace
 
+bool GapLog::has(const std::string& name, bool scaled) const {
+  for (const ColumnSpec& spec : columnSpecs()) {
+    if (name == spec.name) return !(this->*spec.member).empty() && !(scaled && unscaled.count(name));
+  }
+  return false;
+}
+
 double GapLog::medianStep() const {
   if (t.size() < 2) return 0.0;
   std::vector<double> steps(t.size() - 1);
@@ -132,6 +139,8 @@ GapLog GapLog::slice(std::size_t begin, std::size_t end) const {
   }
   GapLog out;
   out.source = source + "[" + std::to_string(begin) + ":" + std::to_string(end) + "]";
+  out.unscaled = unscaled;
+  out.mapping = mapping;
   for (const ColumnSpec& spec : columnSpecs()) {
     const std::vector<double>& from = this->*spec.member;
     if (from.empty()) continue;  // absent optional column stays absent
@@ -145,7 +154,7 @@ GapLog GapLog::slice(std::size_t begin, std::size_t end) const {
   return out;
 }
 
-GapLog readCsvLog(const std::string& path) {
+GapLog readCsvLog(const std::string& path, const LogMapping& mapping) {
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     const int err = errno;
@@ -173,18 +182,26 @@ GapLog readCsvLog(const std::string& path) {
     throw InputError(path + ": empty file (no header row; expected columns " + joinNames(names) + ")");
   }
 
-  // Map the used columns to header positions.
+  // Map the used columns to header positions (through the log mapping, if any).
   std::vector<int> position(specs.size(), -1);  // header index of each spec, -1 if absent
   std::vector<std::string> missing;
   for (std::size_t s = 0; s < specs.size(); ++s) {
+    const std::string column = mapping.columnFor(specs[s].name);
+    const bool mapped = column != specs[s].name;
     for (std::size_t h = 0; h < header.size(); ++h) {
-      if (header[h] != specs[s].name) continue;
+      if (header[h] != column) continue;
       if (position[s] >= 0) {
-        throw InputError(path + ":" + std::to_string(header_line) + ": column '" + specs[s].name +
+        throw InputError(path + ":" + std::to_string(header_line) + ": column '" + column +
                          "' appears twice (columns " + std::to_string(position[s] + 1) + " and " +
                          std::to_string(h + 1) + ")");
       }
       position[s] = static_cast<int>(h);
+    }
+    if (position[s] < 0 && mapped) {
+      const auto it = mapping.columns.find(specs[s].name);
+      throw InputError(path + ":" + std::to_string(header_line) + ": column '" + column + "' (mapped to " +
+                       specs[s].name + " by " + (it == mapping.columns.end() ? mapping.source : it->second.location) +
+                       ") is not in the file; columns found: " + joinNames(header));
     }
     if (position[s] < 0 && specs[s].required) missing.push_back(specs[s].name);
   }
@@ -223,6 +240,21 @@ GapLog readCsvLog(const std::string& path) {
   GapLog log;
   log.source = path;
   log.rows_read = rows.size();
+  log.mapping = mapping.source;
+  // Units: value = scale * raw + offset for mapped columns, seconds for the time column.
+  for (std::size_t p = 0; p < present.size(); ++p) {
+    const std::string& name = specs[present[p]].name;
+    double scale = 1.0, offset = 0.0;
+    if (name == std::string("t")) {
+      scale = mapping.time_scale;
+    } else if (const auto it = mapping.columns.find(name); it != mapping.columns.end()) {
+      scale = it->second.scale;
+      offset = it->second.offset;
+      if (it->second.unscaled) log.unscaled.insert(name);
+    }
+    if (scale == 1.0 && offset == 0.0) continue;
+    for (RawRow& r : rows) r.values[p] = scale * r.values[p] + offset;
+  }
 
   // An optional column that holds no finite value at all is treated as absent (with a note);
   // otherwise it is used, and a row with a non-finite cell in it is skipped.

@@ -3,6 +3,7 @@
 // Layout (keys in this order; every GapReport field appears):
 //   { "format": "lane_keeping.gap_report", "version": 1,
 //     "logs": [..], "heldout": [..], "rows_used": N, "rows_skipped": N, "notes": [..],
+//     "skipped_subsystems": [{"name", "reason"}], "not_testable": [{"effect", "reason"}],
 //     "split": { "method", "coverage": {kind: held-out share} },
 //     "detection": { "draws", "false_alarm_rate", "heldout": {"value", "p_value", "null_median", "null_max",
 //                    "detected"}, "training": {..} },
@@ -146,6 +147,10 @@ OrderedJson toJson(const GapReport& r) {
   out["rows_used"] = r.rows_used;
   out["rows_skipped"] = r.rows_skipped;
   out["notes"] = r.notes;
+  out["skipped_subsystems"] = OrderedJson::array();
+  for (const auto& s : r.skipped_subsystems) out["skipped_subsystems"].push_back({{"name", s.name}, {"reason", s.reason}});
+  out["not_testable"] = OrderedJson::array();
+  for (const auto& e : r.not_testable) out["not_testable"].push_back({{"effect", e.effect}, {"reason", e.reason}});
   out["split"] = OrderedJson{{"method", r.split.method}, {"coverage", numberMap(r.split.coverage)}};
   out["detection"] = OrderedJson{{"draws", r.detection.draws},
                                  {"false_alarm_rate", number(r.detection.false_alarm_rate)},
@@ -311,6 +316,18 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   r.get(j, root, "rows_used", &rep.rows_used);
   r.get(j, root, "rows_skipped", &rep.rows_skipped);
   r.get(j, root, "notes", &rep.notes);
+  r.forEach(j, root, "skipped_subsystems", false, [&](const Json& e, const std::string& p) {
+    SkippedSubsystem s;
+    r.get(e, p, "name", &s.name, true);
+    r.get(e, p, "reason", &s.reason);
+    rep.skipped_subsystems.push_back(s);
+  });
+  r.forEach(j, root, "not_testable", false, [&](const Json& e, const std::string& p) {
+    UntestableEffect u;
+    r.get(e, p, "effect", &u.effect, true);
+    r.get(e, p, "reason", &u.reason);
+    rep.not_testable.push_back(u);
+  });
   if (const Json* s = r.member(j, root, "split", false)) {
     r.get(*s, root + ".split", "method", &rep.split.method);
     r.get(*s, root + ".split", "coverage", &rep.split.coverage);

@@ -127,6 +127,14 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
         << num(v.partial.whiteness_p, "%.3f") << ", correlation with the input p = "
         << num(v.partial.input_correlation_p, "%.3f") << "\n";
   }
+  for (const auto& s : r.skipped_subsystems) {
+    out << "- skipped: the " << s.name << " replay (" << s.reason << ")\n";
+  }
+  if (!r.not_testable.empty()) {
+    std::vector<std::string> names;
+    for (const auto& e : r.not_testable) names.push_back(e.effect + " (" + e.reason + ")");
+    out << "- not testable on these logs (not rejected): " << join(names, "; ") << "\n";
+  }
   if (!r.split.method.empty()) {
     std::vector<std::string> coverage;
     for (const auto& [kind, share] : r.split.coverage) coverage.push_back(kind + " " + percent(share));

@@ -41,7 +41,9 @@ std::string scenarioKeysDescription() {
 
 GapRun gapRun(GapLog log, const FlatParams& nominal, const FlatParams& scenario, const std::string& scenario_source) {
   std::vector<ConfigProblem> problems;
-  for (const auto& [key, entry] : scenario.entries()) {
+  FlatParams settings = scenario;
+  settings.erasePrefix("log.");  // a log mapping (log_mapping.h) is read by whoever reads the log
+  for (const auto& [key, entry] : settings.entries()) {
     if (!isScenarioKey(key)) {
       problems.push_back({key, entry.location,
                           "is not a per-run setting: a scenario may set " + scenarioKeysDescription() +
@@ -50,7 +52,8 @@ GapRun gapRun(GapLog log, const FlatParams& nominal, const FlatParams& scenario,
   }
   if (!problems.empty()) throw ConfigError(problems);
   FlatParams combined = nominal;
-  combined.overlayFlat(scenario);
+  combined.erasePrefix("log.");
+  combined.overlayFlat(settings);
   GapRun run;
   run.config = simConfigFromFlat(combined);
   run.log = std::move(log);

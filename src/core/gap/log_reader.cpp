@@ -22,10 +22,14 @@ std::string lowerExtension(const std::string& path) {
 
 void registerBagLogReader(BagLogReader reader) { bagReader() = std::move(reader); }
 
-GapLog readLog(const std::string& path) {
+GapLog readLog(const std::string& path, const LogMapping& mapping) {
   const std::string ext = lowerExtension(path);
-  if (ext == "csv") return readCsvLog(path);
+  if (ext == "csv") return readCsvLog(path, mapping);
   if (ext == "bag") {
+    if (!mapping.empty()) {
+      throw ConfigError(path + ": a bag holds the suite's own topics; the log mapping " + mapping.source +
+                        " applies to CSV logs only");
+    }
     if (!bagReader()) throw InputError(path + ": reading bags needs lk_gap built with rosbag support");
     return bagReader()(path);
   }

@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 
+#include "lane_keeping/common/errors.h"
+
 namespace lane_keeping {
 
 std::vector<double> smoothedDerivative(const std::vector<double>& t, const std::vector<double>& values,
@@ -96,25 +98,31 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   values_[kTorque] = log_.torque;
   values_[kSpeed] = log_.v;
   values_[kLateralAcceleration] = log_.ay;
-  values_[kDeltaRate] =
-      log_.hasSteeringRate() ? log_.delta_rate : smoothedDerivative(t, log_.delta, windows.steering, 1);
-  values_[kDeltaAcceleration] = smoothedDerivative(t, values_[kDeltaRate], windows.steering, 1);
+  // Derived channels exist where their sources do (a partial log lacks some; has() says which).
+  const bool pose = !log_.x.empty() && !log_.y.empty() && !log_.psi.empty();
+  if (log_.hasSteeringRate()) values_[kDeltaRate] = log_.delta_rate;
+  else if (!log_.delta.empty()) values_[kDeltaRate] = smoothedDerivative(t, log_.delta, windows.steering, 1);
+  if (!values_[kDeltaRate].empty()) {
+    values_[kDeltaAcceleration] = smoothedDerivative(t, values_[kDeltaRate], windows.steering, 1);
+  }
   // delta_des is computed by the tracker, not measured: differentiated through a spline, not smoothed,
   // so that the identification excitation's top frequencies keep their rate (splineDerivative).
-  values_[kDeltaDesRate] = splineDerivative(t, log_.delta_des);
-  values_[kYawAcceleration] = smoothedDerivative(t, log_.yaw_rate, windows.steering, 1);
-  values_[kXDot] = smoothedDerivative(t, log_.x, windows.position, 1);
-  values_[kYDot] = smoothedDerivative(t, log_.y, windows.position, 1);
-  values_[kSigma1].resize(t.size());
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
+  if (!log_.delta_des.empty()) values_[kDeltaDesRate] = splineDerivative(t, log_.delta_des);
+  if (!log_.yaw_rate.empty()) values_[kYawAcceleration] = smoothedDerivative(t, log_.yaw_rate, windows.steering, 1);
+  if (!log_.x.empty()) values_[kXDot] = smoothedDerivative(t, log_.x, windows.position, 1);
+  if (!log_.y.empty()) values_[kYDot] = smoothedDerivative(t, log_.y, windows.position, 1);
+  if (pose) {
+    values_[kSigma1].resize(t.size());
+    for (std::size_t i = 0; i < t.size(); ++i) {
+      values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
+    }
   }
-  smoothed_[kX] = smoothedDerivative(t, log_.x, windows.pose, 0);
-  smoothed_[kY] = smoothedDerivative(t, log_.y, windows.pose, 0);
-  smoothed_[kPsi] = smoothedDerivative(t, log_.psi, windows.pose, 0);
-  smoothed_[kDelta] = smoothedDerivative(t, log_.delta, windows.steering, 0);
-  smoothed_[kDeltaRate] =
-      log_.hasSteeringRate() ? smoothedDerivative(t, log_.delta_rate, windows.steering, 0) : values_[kDeltaRate];
+  if (!log_.x.empty()) smoothed_[kX] = smoothedDerivative(t, log_.x, windows.pose, 0);
+  if (!log_.y.empty()) smoothed_[kY] = smoothedDerivative(t, log_.y, windows.pose, 0);
+  if (!log_.psi.empty()) smoothed_[kPsi] = smoothedDerivative(t, log_.psi, windows.pose, 0);
+  if (!log_.delta.empty()) smoothed_[kDelta] = smoothedDerivative(t, log_.delta, windows.steering, 0);
+  if (log_.hasSteeringRate()) smoothed_[kDeltaRate] = smoothedDerivative(t, log_.delta_rate, windows.steering, 0);
+  else smoothed_[kDeltaRate] = values_[kDeltaRate];
   for (Channel c : {kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration}) {
     noise_[c] = fourthDifferenceNoise(values_[c]);
   }
@@ -138,6 +146,7 @@ std::size_t LogSignals::indexAtOrBefore(double t) const {
 
 double LogSignals::at(Channel c, double t) const {
   const auto& v = values_[c];
+  if (v.empty()) throw LaneKeepingError(log_.source + ": the log has no " + name(c) + " (a partial log)");
   const auto& times = log_.t;
   if (t <= times.front()) return v.front();
   if (t >= times.back()) return v.back();
@@ -148,6 +157,7 @@ double LogSignals::at(Channel c, double t) const {
 
 double LogSignals::at(Channel c, double t, std::size_t* hint) const {
   const auto& v = values_[c];
+  if (v.empty()) throw LaneKeepingError(log_.source + ": the log has no " + name(c) + " (a partial log)");
   const auto& times = log_.t;
   if (t <= times.front()) return v.front();
   if (t >= times.back()) return v.back();

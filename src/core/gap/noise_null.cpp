@@ -63,8 +63,8 @@ std::vector<double> NoiseNull::trainTotals() const {
   return out;
 }
 
-NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset>& held, const ReplayOptions& options,
-                    int draws, int threads) {
+NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset>& held,
+                    const std::set<std::string>& subsystems, const ReplayOptions& options, int draws, int threads) {
   struct Result {
     bool ok = false;
     std::map<std::string, SubsystemScore> train, held;
@@ -79,10 +79,10 @@ NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset
       r.note = draw.note;
       return;
     }
-    const Evaluation held_ev = evaluate(nullptr, draw.held, allSubsystems(), options);
+    const Evaluation held_ev = evaluate(nullptr, draw.held, subsystems, options);
     r.held = held_ev.scores;
     r.structure = residualStructures(held_ev, draw.held);
-    if (!draw.train.empty()) r.train = evaluate(nullptr, draw.train, allSubsystems(), options).scores;
+    if (!draw.train.empty()) r.train = evaluate(nullptr, draw.train, subsystems, options).scores;
     r.ok = true;
   });
   NoiseNull null;

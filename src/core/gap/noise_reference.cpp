@@ -52,9 +52,18 @@ GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsign
   }
   GapLog out = gapLogFromRows(run.rows, log.log().source + " (noise reference)");
   for (double& t : out.t) t += log.start();
-  if (!log.log().hasSpeed()) out.v.clear();
-  if (!log.log().hasLateralAcceleration()) out.ay.clear();
-  if (!log.log().hasSteeringRate()) out.delta_rate.clear();
+  // The reference holds the columns the log holds, in the same units state (a partial log's replays
+  // are the ones its columns allow).
+  const GapLog& real = log.log();
+  for (auto [present, column] : {std::pair<bool, std::vector<double>*>{real.has("x"), &out.x},
+                                 {real.has("y"), &out.y}, {real.has("psi"), &out.psi},
+                                 {real.has("yaw_rate"), &out.yaw_rate}, {real.has("v"), &out.v},
+                                 {real.has("ay"), &out.ay}, {real.has("delta"), &out.delta},
+                                 {real.has("delta_rate"), &out.delta_rate}, {real.has("delta_des"), &out.delta_des},
+                                 {real.has("torque"), &out.torque}}) {
+    if (!present) column->clear();
+  }
+  out.unscaled = real.unscaled;
   addSensorNoise(out, estimatedNoise(log), seed);
   return out;
 }

@@ -69,9 +69,11 @@ TEST(GapDiagnosis, FindsLuGreSteeringFrictionWithTheTanhCandidate) {
 
 TEST(GapDiagnosis, FindsAProgressiveColumnWithAFitUnderWhichTheLoggedLoopStaysBounded) {
   // Truth: a progressive column (k = 4000 N m/rad, twice as stiff at 0.03 rad), c = 15, J_c = 0.05.
-  // The column mode (~45 Hz) is seen only at 500 Hz.
+  // The column mode (~45 Hz) is seen only at 500 Hz. (20 s: on 16 s the held-out blocks leave the
+  // stiffness and damping unidentified - a rigid, heavily damped column of the same inertia removes the
+  // whole gap - and no fit needs a bounded refit.)
   const GapReport r = diagnoseCase("steering_compliance-small-sinusoid",
-                                   {"steering_compliance", "actuation_delay", "steering_friction"}, 16.0, 500.0);
+                                   {"steering_compliance", "actuation_delay", "steering_friction"}, 20.0, 500.0);
   EXPECT_EQ(r.verdict.effect, "steering_compliance") << r.verdict.reason;
   EXPECT_GT(r.verdict.shrink, 0.6);
   const auto& p = ranked(r, "steering_compliance").params;

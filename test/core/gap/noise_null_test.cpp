@@ -32,7 +32,7 @@ DetectionTest heldOutTest(BenchmarkCase c, unsigned seed, double duration = 12.0
   const auto all = allSubsystems();
   const Evaluation train = evaluate(nullptr, split.train, all, options.replay);
   const Evaluation held = evaluate(nullptr, split.held, all, options.replay);
-  const NoiseNull null = noiseNull(split.train, split.held, options.replay, options.noise_reference_draws, 2);
+  const NoiseNull null = noiseNull(split.train, split.held, all, options.replay, options.noise_reference_draws, 2);
   EXPECT_EQ(null.draws(), 19);
   return detectGap(train.scores, held.scores, null, options).heldout;
 }

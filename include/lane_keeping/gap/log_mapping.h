@@ -1,0 +1,54 @@
+#pragma once
+/// How a log's columns map to the diagnosis's schema (DESIGN §5): logs of real cars name their columns
+/// differently, record the steering-wheel angle instead of the road-wheel angle, torques in the bus's
+/// own units, time in ms. A `log:` section says so, in the nominal configuration (for every log), in a
+/// scenario, or in a file of its own (lk_gap --log-map FILE after a --log):
+///
+///   log:
+///     time: {column: timestamp_ms, unit: ms}           # s (default), ms, us or ns
+///     columns:
+///       delta:  {column: steering_wheel_angle, scale: 0.0667, offset: 0}   # value = scale * raw + offset
+///       torque: {column: eps_torque, unscaled: true}   # units unknown: marked, not used where they matter
+///       x:      {column: east}
+///
+/// A schema column not listed keeps its own name; a listed one is read only from its mapped column.
+#include <map>
+#include <string>
+
+namespace YAML {
+class Node;
+}
+
+namespace lane_keeping {
+
+struct ColumnMapping {
+  std::string column;      ///< the log's column name
+  double scale = 1.0;      ///< schema value = scale * raw + offset
+  double offset = 0.0;
+  bool unscaled = false;   ///< the raw values are in unknown units (e.g. torque in bus counts)
+  std::string location;    ///< file:line of the entry, for messages
+};
+
+struct LogMapping {
+  std::string source;                           ///< the file the mapping came from ("" = none)
+  std::string time_column = "t";
+  double time_scale = 1.0;                      ///< seconds per unit of the time column
+  std::map<std::string, ColumnMapping> columns; ///< schema column -> mapping
+
+  bool empty() const { return source.empty() && columns.empty() && time_column == "t" && time_scale == 1.0; }
+  /// The log's column that holds schema column `schema` (itself when not mapped).
+  std::string columnFor(const std::string& schema) const;
+};
+
+/// The schema's columns: t, x, y, psi, yaw_rate, v, ay, delta, delta_rate, delta_des, torque.
+bool isSchemaColumn(const std::string& name);
+
+/// The mapping under `log_section` (the node of the `log:` key), read from `file`. Throws ConfigError
+/// naming file:line and the key: an unknown schema column, an unknown time unit, a scale that is zero or
+/// not finite, a column mapped twice, an entry without `column`.
+LogMapping logMappingFromYaml(const YAML::Node& log_section, const std::string& file);
+/// The `log:` section of a YAML file, or an empty mapping if it has none. Throws ConfigError as above,
+/// or if the file cannot be read.
+LogMapping readLogMapping(const std::string& file);
+
+}  // namespace lane_keeping
