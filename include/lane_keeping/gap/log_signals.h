@@ -6,8 +6,8 @@
 ///   desired rate   delta_des_dot (the derivative of a cubic spline through delta_des: computed by the
 ///                  tracker, not measured, so it is not smoothed), yaw acceleration d/dt yaw_rate,
 ///   velocity of G  x_dot, y_dot,  and sigma1 = -x_dot sin(psi) + y_dot cos(psi) (row 2 of Beregi eq 1),
-///   and, kept for nearestAlongSmoothed only, the pose x, y, psi and the steering angle and rate
-///   smoothed by the same filter (value, zero lag).
+///   the rate of the speed dV/dt (when the log has v), and, kept for nearestAlongSmoothed only, the pose
+///   x, y, psi and the steering angle and rate smoothed by the same filter (value, zero lag).
 #include <string>
 #include <vector>
 
@@ -25,7 +25,7 @@ class LogSignals {
  public:
   enum Channel {
     kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration,
-    kDeltaRate, kDeltaAcceleration, kDeltaDesRate, kYawAcceleration, kXDot, kYDot, kSigma1, kChannels
+    kDeltaRate, kDeltaAcceleration, kDeltaDesRate, kYawAcceleration, kXDot, kYDot, kSigma1, kSpeedRate, kChannels
   };
 
   explicit LogSignals(GapLog log, const SmoothingWindows& windows = {});
@@ -34,6 +34,12 @@ class LogSignals {
   double start() const { return log_.t.front(); }
   double end() const { return log_.t.back(); }
   bool has(Channel c) const { return !values_[c].empty(); }
+  /// The log records a speed that varies beyond its noise: the RMS deviation of the smoothed speed from
+  /// its mean exceeds 1 % of the mean and three times the speed's noise. The replays then take V and
+  /// dV/dt (kSpeedRate) from the log instead of the configured constant speed.
+  bool speedVaries() const { return speed_varies_; }
+  /// The fastest logged speed (the configured one when the speed does not vary), for step bounds.
+  double fastestSpeed(double configured) const;
   /// Linear interpolation; clamps to the first/last sample outside the log.
   double at(Channel c, double t) const;
   /// Same, starting the search from `*hint` (updated): O(1) for the near-monotone queries of a replay.
@@ -67,6 +73,7 @@ class LogSignals {
   std::vector<std::vector<double>> values_;
   std::vector<std::vector<double>> smoothed_;  ///< per channel; empty where nearestAlongSmoothed interpolates
   std::vector<double> noise_;
+  bool speed_varies_ = false;
 };
 
 /// sigma of white noise in a series by fourth differences.

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "lane_keeping/gap/log_signals.h"
+#include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/replay_trace.h"
 #include "lane_keeping/sim/rk4.h"
 #include "lane_keeping/tire/tire.h"
@@ -35,6 +36,12 @@ double scaleOf(const std::vector<double>& v);
 bool inSegments(double t, const std::vector<TimeSegment>& segments);
 
 ReplayTrace makeTrace(const std::string& name, const std::vector<double>& measured_all);
+
+/// The vehicle model a replay integrates: the configuration's, except that a log whose speed varies
+/// (LogSignals::speedVaries) drives the speed itself (imposeLoggedSpeed), so the configured profile is off.
+SingleTrackModel replayModel(const SimConfig& config, const LogSignals& log);
+/// Sets V and dV/dt at `t` from the log into `model` when the log's speed varies (else nothing).
+void imposeLoggedSpeed(SingleTrackModel& model, const LogSignals& log, double t, std::size_t* hint);
 
 /// Shooting intervals [a, b) covering the segments.
 std::vector<TimeSegment> shootingIntervals(const std::vector<TimeSegment>& segments, double horizon);

@@ -106,6 +106,16 @@ class SingleTrackModel {
     T c, s, inv_c;
   };
 
+  /// A speed imposed from outside, for replays of a log whose speed varies (the gap diagnosis): V and
+  /// dV/dt at the time of the next evaluations, instead of the configured speed (and its profile, which
+  /// must be off: vehicle.speed_variation = 0). dV/dt enters f1, f2 as the rheonomic terms of a varying
+  /// speed do (bodyForces).
+  void setSpeed(double V, double V_dot) {
+    p_.speed = V;
+    inv_V_ = 1.0 / V;
+    imposed_V_dot_ = V_dot;
+  }
+
   /// Eq 2: x_dot[kX], x_dot[kY], x_dot[kPsi], x_dot[kDelta].
   /// Speed of the front axle V at the position x (constant unless vehicle.speed_variation > 0).
   template <typename T>
@@ -199,6 +209,10 @@ class SingleTrackModel {
       const T x_dot = u * cos(x[kPsi]) - s1 * sin(x[kPsi]);
       const T V_dot = p_.speed * p_.speed_variation * speed_k_ * cos(speed_k_ * x[kX]) * x_dot;
       const T term = V_dot * (mF + m) * s * inv_c * inv_c;
+      *f1 = *f1 + term;
+      *f2 = *f2 + b * term;
+    } else if (imposed_V_dot_ != 0.0) {  // the same terms with dV/dt imposed (setSpeed)
+      const T term = imposed_V_dot_ * (mF + m) * s * inv_c * inv_c;
       *f1 = *f1 + term;
       *f2 = *f2 + b * term;
     }
@@ -323,6 +337,7 @@ class SingleTrackModel {
   double inv_V_;   ///< 1 / V
   double inv_JF_;  ///< 1 / J_F
   double speed_k_; ///< 2 pi / speed_wavelength
+  double imposed_V_dot_ = 0.0;  ///< [m/s^2] dV/dt imposed by setSpeed (0: none)
   int front_offset_, rear_offset_, state_size_;  ///< state layout, fixed at construction
   double front_half_length_, rear_half_length_;  ///< a of eq 8's leading points (the tires' contactHalfLength())
 };

@@ -15,15 +15,16 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
                               const ReplayOptions& options) {
   SubsystemReplay out;
   out.name = "chassis";
-  const SingleTrackModel model = createVehicleModel(config);
+  SingleTrackModel model = replayModel(config, log);
   const int n_full = model.stateSize();
   const int front0 = model.frontTireOffset(), front_n = model.frontTire().stateSize();
   const int rear0 = model.rearTireOffset(), rear_n = model.rearTire().stateSize();
   // Integrated states: x, y, psi, sigma1, sigma2, the tires'.
   const int n = 5 + front_n + rear_n;
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
-  std::size_t hint = 0;
+  std::size_t hint = 0, speed_hint = 0;
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
+    imposeLoggedSpeed(model, log, t, &speed_hint);
     full[kX] = q[0];
     full[kY] = q[1];
     full[kPsi] = q[2];
@@ -69,8 +70,9 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   Eigen::VectorXd q_dot(n);
   const auto& times = log.times();
   // Fast tire dynamics (relaxation, LuGre transport ~ kappa V / L) need a shorter step.
-  const double step = std::min({options.chassis_step, tireStep(model.frontTire(), config.vehicle.speed),
-                                 tireStep(model.rearTire(), config.vehicle.speed)});
+  const double fastest = log.fastestSpeed(config.vehicle.speed);
+  const double step = std::min({options.chassis_step, tireStep(model.frontTire(), fastest),
+                                 tireStep(model.rearTire(), fastest)});
   for (const TimeSegment& interval : shootingIntervals(segments, options.chassis_horizon)) {
     // The chassis is slow (a few Hz): compare at most every chassis_compare_period seconds.
     std::vector<std::size_t> samples;

@@ -117,6 +117,7 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
       values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
     }
   }
+  if (!log_.v.empty()) values_[kSpeedRate] = smoothedDerivative(t, log_.v, windows.position, 1);
   if (!log_.x.empty()) smoothed_[kX] = smoothedDerivative(t, log_.x, windows.pose, 0);
   if (!log_.y.empty()) smoothed_[kY] = smoothedDerivative(t, log_.y, windows.pose, 0);
   if (!log_.psi.empty()) smoothed_[kPsi] = smoothedDerivative(t, log_.psi, windows.pose, 0);
@@ -135,6 +136,23 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   noise_[kDeltaRate] = log_.hasSteeringRate() ? fourthDifferenceNoise(values_[kDeltaRate])
                                               : derivativeNoise(noise_[kDelta], windows.steering);
   noise_[kSigma1] = derivativeNoise(std::max(noise_[kX], noise_[kY]), windows.position);
+  if (!log_.v.empty()) {
+    const std::vector<double> v = smoothedDerivative(t, log_.v, windows.position, 0);
+    double mean = 0.0;
+    for (double x : v) mean += x;
+    mean /= static_cast<double>(v.size());
+    double ss = 0.0;
+    for (double x : v) ss += (x - mean) * (x - mean);
+    const double spread = std::sqrt(ss / static_cast<double>(v.size()));
+    speed_varies_ = spread > 0.01 * std::fabs(mean) && spread > 3.0 * noise_[kSpeed];
+  }
+}
+
+double LogSignals::fastestSpeed(double configured) const {
+  if (!speed_varies_) return configured;
+  double fastest = 0.0;
+  for (double v : values_[kSpeed]) fastest = std::max(fastest, std::fabs(v));
+  return fastest;
 }
 
 std::size_t LogSignals::indexAtOrBefore(double t) const {
@@ -185,7 +203,7 @@ double LogSignals::nearestAlongSmoothed(Channel c, double t) const {
 const char* LogSignals::name(Channel c) {
   static const char* names[] = {"x",         "y",          "psi",        "yaw_rate",     "delta",  "delta_des",
                                 "torque",    "v",          "ay",         "delta_rate",   "delta_acceleration",
-                                "delta_des_rate", "yaw_acceleration", "x_dot", "y_dot", "sigma1"};
+                                "delta_des_rate", "yaw_acceleration", "x_dot", "y_dot", "sigma1", "speed_rate"};
   return names[c];
 }
 

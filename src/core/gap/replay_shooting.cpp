@@ -4,6 +4,8 @@
 #include <limits>
 #include <variant>
 
+#include "lane_keeping/sim/model_factory.h"
+
 namespace lane_keeping {
 namespace replay {
 
@@ -60,6 +62,18 @@ std::vector<TimeSegment> shootingIntervals(const std::vector<TimeSegment>& segme
 /// noise-free simulated log must not divide by zero).
 double noiseFor(const LogSignals& log, LogSignals::Channel c, double scale) {
   return std::max(log.noise(c), 1e-6 * scale);
+}
+
+SingleTrackModel replayModel(const SimConfig& config, const LogSignals& log) {
+  if (!log.speedVaries()) return createVehicleModel(config);
+  SimConfig c = config;
+  c.vehicle.speed_variation = 0.0;
+  return createVehicleModel(c);
+}
+
+void imposeLoggedSpeed(SingleTrackModel& model, const LogSignals& log, double t, std::size_t* hint) {
+  if (!log.speedVaries()) return;
+  model.setSpeed(log.at(LogSignals::kSpeed, t, hint), log.at(LogSignals::kSpeedRate, t, hint));
 }
 
 }  // namespace replay

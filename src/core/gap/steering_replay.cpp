@@ -87,7 +87,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
     const double w = (t - sigma1_times[j]) / (sigma1_times[i] - sigma1_times[j]);
     return sigma1_values[j] + w * (sigma1_values[i] - sigma1_values[j]);
   };
-  const SingleTrackModel model = createVehicleModel(config);
+  SingleTrackModel model = replayModel(config, log);
   const int n_full = model.stateSize();
   const int steer0 = model.steeringStateOffset();
   const int steer_n = model.steering().stateSize();
@@ -100,8 +100,9 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
   const double limit = config.simulation.divergence.max_steering_angle;
 
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
-  std::size_t hint = 0, torque_hint = 0;
+  std::size_t hint = 0, torque_hint = 0, speed_hint = 0;
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
+    imposeLoggedSpeed(model, log, t, &speed_hint);
     full[kDelta] = q[0];
     full[kSigma3] = q[1];
     full[kSigma1] = lateralVelocity(t);
@@ -126,7 +127,8 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
 
   ReplayTrace trace = makeTrace("delta", log.samples(C::kDelta));
   Rk4 rk4(n);
-  const double tire_step = std::min(options.steering_step, tireStep(model.frontTire(), config.vehicle.speed));
+  const double tire_step =
+      std::min(options.steering_step, tireStep(model.frontTire(), log.fastestSpeed(config.vehicle.speed)));
   const auto& times = log.times();
   // Stiff steering systems need a shorter step: RK4 is stable up to ~2.8 / (fastest rate).
   double step = tire_step;

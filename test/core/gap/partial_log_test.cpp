@@ -12,6 +12,7 @@
 #include "lane_keeping/gap/gap_log.h"
 #include "lane_keeping/gap/log_mapping.h"
 #include "lane_keeping/gap/log_signals.h"
+#include "lane_keeping/gap/gap_metrics.h"
 #include "lane_keeping/gap/subsystem_replay.h"
 
 namespace lane_keeping {
@@ -147,6 +148,47 @@ TEST(PartialLog, ALogThatFeedsNoReplayIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("the logs feed no subsystem's replay"), std::string::npos) << e.what();
     EXPECT_NE(std::string(e.what()).find("chassis: partial.csv: the log has no delta"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace lane_keeping
+
+namespace lane_keeping {
+namespace {
+
+/// The chassis replay's excess on a log of a speed varying along the road (+-15 %), with and without
+/// the log's speed column.
+TEST(SpeedFromTheLog, TheReplaysFollowALoggedSpeedThatVaries) {
+  BenchmarkCase c;
+  c.id = "speed";
+  c.manoeuvre = "sinusoid";
+  c.truth_overlay = {"vehicle.speed_variation=0.15", "vehicle.speed_wavelength=110", "simulation.duration=16"};
+  c.seed = 9u;
+  const GapLog with_speed = generateBenchmarkLog(c, SensorNoise{}, 200.0);
+  GapLog without_speed = with_speed;
+  without_speed.v.clear();
+  SimConfig nominal = benchmarkNominal("sinusoid");  // constant 15 m/s
+  const LogSignals signals(with_speed);
+  EXPECT_TRUE(signals.speedVaries());
+  EXPECT_FALSE(LogSignals(generateBenchmarkLog(BenchmarkCase{"still", "none", "none", "", "sinusoid",
+                                                             {"simulation.duration=16"}, 9u},
+                                               SensorNoise{}, 200.0))
+                   .speedVaries());  // a constant speed with noise on it does not count as varying
+  const std::vector<TimeSegment> all{{1.0, 16.0}};
+  const LogSignals constant_signals(without_speed);
+  const SubsystemReplay chassis_followed = replayChassis(nominal, signals, all);
+  const SubsystemReplay chassis_constant = replayChassis(nominal, constant_signals, all);
+  const double followed = scoreReplay(chassis_followed).excess;
+  const double constant = scoreReplay(chassis_constant).excess;
+  EXPECT_GT(constant, 0.02) << "a 15 % speed variation the replay does not know of";
+  EXPECT_LT(followed, 0.2 * constant) << "followed " << followed << ", constant " << constant;
+  // The steering replay, with its lateral velocity from the chassis replay as the diagnosis runs it.
+  const double steering_followed =
+      scoreReplay(replaySteering(nominal, signals, all, {}, &chassis_followed.sigma1_estimate)).excess;
+  const double steering_constant =
+      scoreReplay(replaySteering(nominal, constant_signals, all, {}, &chassis_constant.sigma1_estimate)).excess;
+  EXPECT_LT(steering_followed, 0.5 * steering_constant)
+      << "followed " << steering_followed << ", constant " << steering_constant;
 }
 
 }  // namespace
