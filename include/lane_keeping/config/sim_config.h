@@ -11,6 +11,7 @@
 #include "lane_keeping/control/path_params.h"
 #include "lane_keeping/control/tracker_params.h"
 #include "lane_keeping/sim/delay_params.h"
+#include "lane_keeping/sim/sensor_params.h"
 #include "lane_keeping/sim/simulation_params.h"
 #include "lane_keeping/tire/tire_params.h"
 #include "lane_keeping/vehicle/steering_params.h"
@@ -28,6 +29,7 @@ struct SimConfig {
   TrackerParams tracker;
   ActuatorParams actuator;
   DelayParams delays;
+  SensorParams sensors;
   SimulationParams simulation;
 
   void visit(ParamVisitor& v);

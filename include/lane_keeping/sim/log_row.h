@@ -17,10 +17,13 @@ struct LogRow {
   double delta_des_rate = 0.0;    ///< [rad/s]
   double e_y = 0.0, e_psi = 0.0;  ///< errors of the actual (undelayed) state from the path [m, rad]
   double integral = 0.0;          ///< actuator integral z at the latest actuator sample <= t [rad s]
+  /// The true pose of G (`state` holds what the sensors report: sensors.*, sensor_model.h) [m, m, rad].
+  double x_true = 0.0, y_true = 0.0, psi_true = 0.0;
 };
 
 /// Column names in file order. The first eleven are DESIGN §5's (`torque` is the command M_S);
-/// `torque_applied` is the torque acting on the wheel.
+/// `torque_applied` is the torque acting on the wheel; x_true, y_true, psi_true the true pose (the x, y,
+/// psi columns are the localisation's report).
 const std::vector<std::string>& logColumns();
 /// Values of a row in logColumns() order.
 std::vector<double> logValues(const LogRow& row);

@@ -7,6 +7,7 @@
 
 #include "lane_keeping/sim/delay_line.h"
 #include "lane_keeping/sim/rk4.h"
+#include "lane_keeping/sim/sensor_model.h"
 #include "lane_keeping/sim/signals.h"
 #include "lane_keeping/sim/simulation_params.h"
 #include "lane_keeping/vehicle/single_track_model.h"
@@ -16,8 +17,9 @@ namespace lane_keeping {
 class VehiclePlant {
  public:
   /// @param step plant step [ns] (even); @param torque_delay [ns]; @param actuator_period [ns].
+  /// @param sensors what the tracker, the actuator and the log receive (sensor_model.h).
   VehiclePlant(SingleTrackModel model, const InitialState& initial, Nanoseconds step, Nanoseconds torque_delay,
-               Hold hold, Nanoseconds actuator_period);
+               Hold hold, Nanoseconds actuator_period, const SensorParams& sensors = {});
 
   Nanoseconds time() const { return t_; }
   Nanoseconds stepSize() const { return h_; }
@@ -28,15 +30,17 @@ class VehiclePlant {
   /// One RK4 step. Throws ScheduleError if !readyToStep().
   void step();
 
-  /// Everything about the vehicle at time(): state, velocities, tire quantities, and the torque of
-  /// the last RK4 stage (zero before the first step). Accelerations use that torque. Built on
-  /// demand (it costs two atan and a hypot that a step does not need).
+  /// Everything about the vehicle at time() as its sensors report it (sensor_model.h: what the
+  /// tracker and the log see): state, velocities, tire quantities, and the torque of the last RK4 stage
+  /// (zero before the first step). Accelerations use that torque. Built on demand (it costs two atan and
+  /// a hypot that a step does not need).
   VehicleStateSample sample() const;
-  /// What the tracker reads, every step.
-  PoseSample pose() const {
-    return {x_[kX], x_[kY], x_[kPsi], x_dot_at_sample_[kX], x_dot_at_sample_[kY], x_[kSigma2]};
-  }
-  SteeringMeasurement measurement() const { return {x_[kDelta], x_[kSigma3]}; }
+  /// The same, true (for the errors from the lane, the divergence monitor, the log's *_true columns).
+  VehicleStateSample truth() const;
+  /// What the tracker reads, every step (the localisation's report).
+  PoseSample pose() const { return sensors_.pose(t_, truePose()); }
+  /// What the actuator's angle sensor reads, every step.
+  SteeringMeasurement measurement() const { return sensors_.actuatorAngle(t_, wheel(), column()); }
   const Eigen::VectorXd& state() const { return x_; }
   const SingleTrackModel& model() const { return model_; }
   const DelayLine<TorqueCommand>& torqueLine() const { return torque_line_; }
@@ -45,6 +49,16 @@ class VehiclePlant {
 
  private:
   void refresh(double torque);
+  PoseSample truePose() const {
+    return {x_[kX], x_[kY], x_[kPsi], x_dot_at_sample_[kX], x_dot_at_sample_[kY], x_[kSigma2]};
+  }
+  SteeringMeasurement wheel() const { return {x_[kDelta], x_[kSigma3]}; }
+  /// The motor side of a compliant column (the wheel's angle and rate with a rigid one).
+  SteeringMeasurement column() const {
+    return model_.steering().compliant() ? SteeringMeasurement{x_[model_.steeringStateOffset()],
+                                                               x_[model_.steeringStateOffset() + 1]}
+                                         : wheel();
+  }
 
   SingleTrackModel model_;
   Eigen::VectorXd x_;
@@ -56,6 +70,7 @@ class VehiclePlant {
   VehicleOutputs<double> outputs_;  // of f(x_, sample_torque_)
   Eigen::VectorXd x_dot_at_sample_;  // f(x_, sample_torque_): reused as k1 when the torque matches
   double sample_torque_ = 0.0;
+  SensorModel sensors_;
 };
 
 }  // namespace lane_keeping

@@ -182,6 +182,17 @@ class SingleTrackModel {
     return out;
   }
 
+  /// The disturbance's lateral force at the state x [N] (with its gust): what an accelerometer does not
+  /// sense when it is a road bank's gravity component (DisturbanceParams::kind).
+  double unsensedLateralForce(const double* x) const {
+    if (!disturbance_.active() || disturbance_.sensedByAccelerometer()) return 0.0;
+    double scale = 1.0;
+    if (disturbance_.gust_amplitude != 0.0) {
+      scale = 1.0 + disturbance_.gust_amplitude * std::sin(2.0 * M_PI * x[kX] / disturbance_.gust_wavelength);
+    }
+    return scale * disturbance_.lateral_force;
+  }
+
   /// Eq 5: f1 and f2 (plus the optional disturbance on the body).
   template <typename T>
   void bodyForces(const T* x, const Trig<T>& steer, const TireForces<T>& tf, const TireForces<T>& tr, T* f1,

@@ -36,11 +36,15 @@ struct SteeringParams {
   double column_inertia = 0.02;     ///< J_c [kg m^2]
   double column_stiffening_angle = 0.0;  ///< twist [rad] at which a progressive column is twice as stiff
                                         ///< (secant k (1 + (twist / angle)^2)); 0 = linear
+  /// Where the actuator's angle sensor sits: at the road wheel, or on the motor side of a compliant
+  /// column (the PID then closes on the column's angle and rate; the log's delta stays the road wheel's).
+  std::string angle_sensor = "wheel";
 
   bool softSaturation() const { return saturation == "soft"; }
   bool hasFriction() const { return coulomb_friction > 0.0 || breakaway_friction > 0.0 || viscous_friction > 0.0; }
   bool lugreFriction() const { return friction_model == "lugre" && (coulomb_friction > 0.0 || breakaway_friction > 0.0); }
   bool compliant() const { return column_stiffness > 0.0; }
+  bool columnSensor() const { return angle_sensor == "column"; }
   /// Extra states: column angle and rate (compliant), LuGre friction state.
   int stateSize() const { return (compliant() ? 2 : 0) + (lugreFriction() ? 1 : 0); }
 
@@ -66,6 +70,8 @@ struct SteeringParams {
              "k_c, torsional stiffness between actuator and wheel; 0 = rigid");
     v.number(prefix + "column_damping", column_damping, "N m s/rad", Range::nonNegative(), "c_c, column damping");
     v.number(prefix + "column_inertia", column_inertia, "kg m^2", Range::positive(), "J_c, actuator-side inertia");
+    v.choice(prefix + "angle_sensor", angle_sensor, {"wheel", "column"},
+             "the actuator's angle sensor: at the road wheel, or on the motor side of a compliant column");
     v.number(prefix + "column_stiffening_angle", column_stiffening_angle, "rad", Range::nonNegative(),
              "progressive column: twist at which the secant stiffness doubles, k (1 + (twist / angle)^2); 0 = linear");
   }
@@ -77,8 +83,13 @@ struct DisturbanceParams {
   double yaw_moment = 0.0;      ///< [N m], counter-clockwise positive
   double gust_amplitude = 0.0;  ///< fraction: both scale with (1 + a sin(2 pi x / gust_wavelength))
   double gust_wavelength = 120.0;  ///< [m]
+  /// aerodynamic: a force on the body, which the lateral accelerometer senses (a real acceleration);
+  /// road_bank: the lateral component of gravity on a banked road, which moves the car the same way but
+  /// which an accelerometer does not sense (it measures specific force): the reported a_y lacks F / m.
+  std::string kind = "aerodynamic";
 
   bool active() const { return lateral_force != 0.0 || yaw_moment != 0.0; }
+  bool sensedByAccelerometer() const { return kind != "road_bank"; }
   void visit(ParamVisitor& v, const std::string& prefix) {
     v.number(prefix + "lateral_force", lateral_force, "N", Range::any(),
              "lateral force at G in the body frame (crosswind, road bank), left positive");
@@ -86,6 +97,8 @@ struct DisturbanceParams {
     v.number(prefix + "gust_amplitude", gust_amplitude, "", Range::closed(0.0, 1.0),
              "gusts along the road: force and moment scale with (1 + a sin(2 pi x / gust_wavelength))");
     v.number(prefix + "gust_wavelength", gust_wavelength, "m", Range::positive(), "wavelength of the gusts");
+    v.choice(prefix + "kind", kind, {"aerodynamic", "road_bank"},
+             "aerodynamic (the accelerometer senses it) or road_bank (gravity: the logged a_y does not)");
   }
 };
 

@@ -17,6 +17,7 @@ void SimConfig::visit(ParamVisitor& v) {
   tracker.visit(v, "tracker.");
   actuator.visit(v, "actuator.");
   delays.visit(v, "delays.");
+  sensors.visit(v, "sensors.");
   simulation.visit(v, "simulation.");
 }
 
@@ -57,6 +58,11 @@ std::vector<ConfigProblem> SimConfig::problems() const {
     problems.push_back({"steering.coulomb_friction", "",
                         "must be > 0 N m with steering.friction_model = lugre and a breakaway friction "
                         "(g of Deur eq 6 must stay positive)"});
+  }
+  if (steering.columnSensor() && !steering.compliant()) {
+    problems.push_back({"steering.angle_sensor", "",
+                        "= column needs a compliant column (steering.column_stiffness > 0): with a rigid one the "
+                        "motor side is the road wheel"});
   }
   checkDistributedTireStep(tire_front, "tire.front.", vehicle.speed, simulation.step, problems);
   checkDistributedTireStep(tire_rear, "tire.rear.", vehicle.speed, simulation.step, problems);

@@ -13,7 +13,7 @@ const std::vector<std::string>& logColumns() {
       "t",        "x",        "y",        "psi",       "yaw_rate",  "v",           "ay",
       "delta",    "delta_rate", "delta_des", "torque",  "sigma1",    "delta_des_rate", "e_y",
       "e_psi",    "alpha_f",  "alpha_r",  "force_f",   "force_r",   "moment_f",    "moment_r",
-      "integral", "torque_applied"};
+      "integral", "torque_applied", "x_true", "y_true", "psi_true"};
   return columns;
 }
 
@@ -22,7 +22,7 @@ std::vector<double> logValues(const LogRow& r) {
   return {r.t,       s.x,        s.y,        s.psi,       s.sigma2,          s.speed,
           s.lateral_acceleration, s.delta, s.sigma3, r.delta_des, r.torque_command, s.sigma1,
           r.delta_des_rate, r.e_y, r.e_psi, s.slip_angle_front, s.slip_angle_rear, s.force_front,
-          s.force_rear, s.moment_front, s.moment_rear, r.integral, s.torque};
+          s.force_rear, s.moment_front, s.moment_rear, r.integral, s.torque, r.x_true, r.y_true, r.psi_true};
 }
 
 void writeLogCsv(std::ostream& out, const std::vector<LogRow>& rows) {

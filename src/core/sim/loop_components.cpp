@@ -22,7 +22,7 @@ LoopSchedule loopScheduleOf(const SimConfig& c) {
 
 VehiclePlant createVehiclePlant(const SimConfig& c, const LoopSchedule& s) {
   return VehiclePlant(createVehicleModel(c), c.simulation.initial, s.plant_step, s.torque_delay, s.hold,
-                      s.actuator_period);
+                      s.actuator_period, c.sensors);
 }
 
 PathTrackingStage createPathTrackingStage(const SimConfig& c, const LoopSchedule& s) {

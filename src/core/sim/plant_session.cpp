@@ -45,21 +45,26 @@ long PlantSession::advance(const SampleCallback& on_sample, Nanoseconds until) {
       const bool log_due = t >= next_log_;
       const bool at_end = t >= end_;
       if (log_due || at_end) {
-        const VehicleStateSample state = plant_.sample();
-        const PathErrors errors = path_->errors(state.x, state.y, state.psi, state.x_dot, state.y_dot, state.sigma2);
+        // The errors from the lane and the divergence monitor see the true motion; the log records what
+        // the sensors report (sensor_model.h), with the true pose in its *_true columns.
+        const VehicleStateSample truth = plant_.truth();
+        const PathErrors errors = path_->errors(truth.x, truth.y, truth.psi, truth.x_dot, truth.y_dot, truth.sigma2);
         if (log_due) {
           if (record_rows_) {
             PendingRow pending;
             pending.stamp = t;
             pending.row.t = nanosecondsToSeconds(t);
-            pending.row.state = state;
+            pending.row.state = plant_.sample();
+            pending.row.x_true = truth.x;
+            pending.row.y_true = truth.y;
+            pending.row.psi_true = truth.psi;
             pending.row.e_y = errors.lateral;
             pending.row.e_psi = errors.heading;
             pending_.push_back(pending);
           }
           while (next_log_ <= t) next_log_ += schedule_.log_period;
         }
-        if (auto reason = monitor_.check(state, errors)) {
+        if (auto reason = monitor_.check(truth, errors)) {
           stop(RunResult::Status::kDiverged, "diverged at t = " + formatSeconds(nanosecondsToSeconds(t)) + ": " + *reason);
           break;
         }
@@ -80,6 +85,10 @@ long PlantSession::advance(const SampleCallback& on_sample, Nanoseconds until) {
       pending.stamp = plant_.time();
       pending.row.t = nanosecondsToSeconds(plant_.time());
       pending.row.state = plant_.sample();
+      const VehicleStateSample truth = plant_.truth();
+      pending.row.x_true = truth.x;
+      pending.row.y_true = truth.y;
+      pending.row.psi_true = truth.psi;
       pending.needs_inputs = false;
       if (record_rows_) pending_.push_back(pending);
       stop(RunResult::Status::kDiverged, "diverged at t = " + formatSeconds(pending.row.t) + ": " + *reason);

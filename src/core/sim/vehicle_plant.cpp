@@ -5,14 +5,15 @@
 namespace lane_keeping {
 
 VehiclePlant::VehiclePlant(SingleTrackModel model, const InitialState& initial, Nanoseconds step,
-                           Nanoseconds torque_delay, Hold hold, Nanoseconds actuator_period)
+                           Nanoseconds torque_delay, Hold hold, Nanoseconds actuator_period, const SensorParams& sensors)
     : model_(std::move(model)),
       x_(model_.initialState(initial)),
       h_(step),
       hold_(hold),
       torque_line_("steering torque -> plant", torque_delay, hold, actuator_period),
       rk4_(model_.stateSize()),
-      x_dot_at_sample_(model_.stateSize()) {
+      x_dot_at_sample_(model_.stateSize()),
+      sensors_(sensors, model_.steering().columnSensor()) {
   if (step <= 0 || step % 2 != 0) throw ConfigError("simulation.step must be a positive, even number of nanoseconds");
   refresh(0.0);
 }
@@ -20,9 +21,14 @@ VehiclePlant::VehiclePlant(SingleTrackModel model, const InitialState& initial, 
 void VehiclePlant::refresh(double torque) {
   model_.derivative(x_.data(), torque, x_dot_at_sample_.data(), &outputs_);
   sample_torque_ = torque;
+  if (!sensors_.passThrough()) sensors_.record(t_, truePose(), wheel(), column());
 }
 
 VehicleStateSample VehiclePlant::sample() const {
+  return sensors_.sample(t_, truth(), model_.unsensedLateralForce(x_.data()), model_.params().mass);
+}
+
+VehicleStateSample VehiclePlant::truth() const {
   VehicleStateSample s;
   s.x = x_[kX];
   s.y = x_[kY];

@@ -1,0 +1,54 @@
+#pragma once
+/// The plant's sensors (sensor_params.h): from the true motion to what the tracker, the actuator and
+/// the log receive — a localisation bias and latency, a steering-angle sensor latency and placement
+/// (road wheel, or the motor side of a compliant column), a yaw-rate bias, and an accelerometer that
+/// does not sense a road bank. It keeps the history of the true motion its latencies need; with exact
+/// sensors at the road wheel it passes the truth through untouched.
+#include <deque>
+
+#include "lane_keeping/common/time.h"
+#include "lane_keeping/sim/sensor_params.h"
+#include "lane_keeping/sim/signals.h"
+
+namespace lane_keeping {
+
+class SensorModel {
+ public:
+  /// @param column_sensor the actuator's angle sensor sits on the motor side of the column.
+  SensorModel(const SensorParams& params, bool column_sensor);
+
+  /// Nothing to model: every reading is the truth.
+  bool passThrough() const { return pass_through_; }
+
+  /// Records the true motion at time t (t increasing): the pose and velocities of G, the road wheel's
+  /// angle and rate, and the column's (motor side) angle and rate.
+  void record(Nanoseconds t, const PoseSample& pose, const SteeringMeasurement& wheel, const SteeringMeasurement& column);
+
+  /// What the localisation reports at t: the pose at t - pose_latency, biased.
+  PoseSample pose(Nanoseconds t, const PoseSample& truth) const;
+  /// What the actuator's angle sensor reads at t: the wheel's or the column's angle and rate, at t minus
+  /// the sensor latency.
+  SteeringMeasurement actuatorAngle(Nanoseconds t, const SteeringMeasurement& wheel,
+                                    const SteeringMeasurement& column) const;
+  /// The state sample as the sensors (and so the log) report it: the pose from pose(), the yaw rate with
+  /// its bias, the road wheel's angle and rate (at the sensor's latency when that sensor is the actuator's,
+  /// at the wheel), and a_y without `unsensed_force` / `mass` (a road bank's gravity component).
+  VehicleStateSample sample(Nanoseconds t, const VehicleStateSample& truth, double unsensed_force, double mass) const;
+
+ private:
+  struct Record {
+    Nanoseconds t;
+    PoseSample pose;
+    SteeringMeasurement wheel, column;
+  };
+  /// The record interpolated at t (the first one before it: constant initial history).
+  Record at(Nanoseconds t) const;
+
+  SensorParams p_;
+  bool column_sensor_;
+  bool pass_through_;
+  Nanoseconds pose_latency_, steering_latency_, keep_;
+  std::deque<Record> history_;
+};
+
+}  // namespace lane_keeping

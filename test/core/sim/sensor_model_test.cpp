@@ -1,0 +1,140 @@
+// The plant's sensors (sensor_model.h): what the tracker, the actuator and the log receive when the
+// localisation, the steering-angle sensor, the gyro or the accelerometer do not report the truth.
+// Each placement is checked against a run that differs from it only where the placement says.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/sim/closed_loop.h"
+#include "lane_keeping/sim/loop_components.h"
+#include "lane_keeping/sim/sensor_model.h"
+
+namespace lane_keeping {
+namespace {
+
+std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+
+RunResult run(const std::string& file, const std::vector<std::string>& sets) {
+  const RunResult r = ClosedLoop(loadSimConfig({scenario(file)}, sets)).run();
+  EXPECT_FALSE(r.diverged()) << r.message;
+  return r;
+}
+
+TEST(SensorModel, ExactSensorsLogTheTruth) {
+  const RunResult r = run("lane_change.yaml", {"simulation.duration=6"});
+  ASSERT_GT(r.rows.size(), 100u);
+  for (const LogRow& row : r.rows) {
+    ASSERT_EQ(row.state.x, row.x_true);
+    ASSERT_EQ(row.state.y, row.y_true);
+    ASSERT_EQ(row.state.psi, row.psi_true);
+  }
+}
+
+TEST(SensorModel, LocalisationBiasMovesTheCarLikeATrackerBiasButTheLogRecordsIt) {
+  // The same bias seen by the tracker alone (tracker.pose_bias_y) or by the localisation that the
+  // tracker and the log share: the motion is the same, the logged y differs from the true y by b.
+  const double b = 0.3;
+  const RunResult shared = run("fig6.yaml", {"sensors.pose_bias_y=0.3"});
+  const RunResult tracker_only = run("fig6.yaml", {"tracker.pose_bias_y=0.3"});
+  ASSERT_EQ(shared.rows.size(), tracker_only.rows.size());
+  for (std::size_t i = 0; i < shared.rows.size(); ++i) {
+    ASSERT_NEAR(shared.rows[i].y_true, tracker_only.rows[i].state.y, 1e-9) << "row " << i;
+    ASSERT_NEAR(shared.rows[i].state.y - shared.rows[i].y_true, b, 1e-12) << "row " << i;
+    ASSERT_NEAR(tracker_only.rows[i].state.y, tracker_only.rows[i].y_true, 0.0);
+  }
+  // The tracker steers the reported position onto the straight lane: the true one settles at -b
+  // (from y0 = 1 m with the slow pole at -0.2 1/s, fig6 test: within 3 cm after 20 s).
+  const LogRow& last = shared.rows.back();
+  EXPECT_NEAR(last.y_true, 0.0 - b, 0.03);
+  EXPECT_NEAR(last.state.y, 0.0, 0.03);
+  EXPECT_NEAR(last.e_y, -b, 0.03);  // the errors from the lane are the true ones
+}
+
+TEST(SensorModel, HeadingBiasIsAnOffsetInTheLoggedYawAngle) {
+  const RunResult r = run("lane_change.yaml", {"sensors.pose_bias_psi=0.01", "simulation.duration=6"});
+  for (const LogRow& row : r.rows) ASSERT_NEAR(row.state.psi - row.psi_true, 0.01, 1e-12);
+}
+
+TEST(SensorModel, LocalisationLatencyReportsThePoseOfEarlier) {
+  // Latency 0.1 s, a multiple of the plant step and of the 100 Hz log period: the reported pose at a
+  // row is the true pose ten rows before (exactly: the history holds the plant's steps).
+  const RunResult r = run("lane_change.yaml", {"sensors.pose_latency=0.1", "simulation.duration=8",
+                                               "simulation.log_rate=100"});
+  ASSERT_GT(r.rows.size(), 500u);
+  double largest_change = 0.0;
+  for (std::size_t i = 10; i < r.rows.size(); ++i) {
+    ASSERT_NEAR(r.rows[i].t - r.rows[i - 10].t, 0.1, 1e-9);
+    ASSERT_NEAR(r.rows[i].state.y, r.rows[i - 10].y_true, 1e-9) << "t = " << r.rows[i].t;
+    ASSERT_NEAR(r.rows[i].state.psi, r.rows[i - 10].psi_true, 1e-12) << "t = " << r.rows[i].t;
+    largest_change = std::max(largest_change, std::fabs(r.rows[i].y_true - r.rows[i - 10].y_true));
+  }
+  EXPECT_GT(largest_change, 0.05);  // the lane change moves the car: the check above is not vacuous
+}
+
+TEST(SensorModel, YawRateBiasIsAddedToWhatTheTrackerAndTheLogRead) {
+  SensorParams p;
+  p.yaw_rate_bias = 0.002;
+  const SensorModel sensors(p, false);
+  EXPECT_FALSE(sensors.passThrough());
+  PoseSample truth{1.0, 2.0, 0.1, 20.0, 1.0, 0.05};
+  const PoseSample reported = sensors.pose(0, truth);
+  EXPECT_DOUBLE_EQ(reported.yaw_rate, 0.052);
+  EXPECT_DOUBLE_EQ(reported.y, 2.0);
+  EXPECT_DOUBLE_EQ(reported.psi, 0.1);
+}
+
+TEST(SensorModel, ColumnSensorClosesTheActuatorOnTheMotorSide) {
+  // A compliant column: with the sensor on the motor side the actuator's measurement is the column
+  // angle, while the log's delta stays the road wheel's; the two differ by the twist M / k_c.
+  const SimConfig c = loadSimConfig({scenario("sinusoid.yaml")},
+                                    {"steering.column_stiffness=150", "steering.angle_sensor=column"});
+  const LoopSchedule s = loopScheduleOf(c);
+  VehiclePlant plant = createVehiclePlant(c, s);
+  const int column = plant.model().steeringStateOffset();
+  double largest_twist = 0.0;
+  Nanoseconds next_stamp = 0;
+  for (int i = 0; i < 2000; ++i) {
+    while (!plant.readyToStep()) {
+      plant.pushTorque(next_stamp, 0.5 * std::sin(0.01 * i));
+      next_stamp += plant.stepSize();
+    }
+    plant.step();
+    ASSERT_EQ(plant.measurement().delta, plant.state()[column]);
+    ASSERT_EQ(plant.measurement().delta_rate, plant.state()[column + 1]);
+    ASSERT_EQ(plant.sample().delta, plant.state()[kDelta]);
+    largest_twist = std::max(largest_twist, std::fabs(plant.state()[column] - plant.state()[kDelta]));
+  }
+  EXPECT_GT(largest_twist, 1e-4);  // the column twists: the two sensors do differ
+}
+
+TEST(SensorModel, ColumnSensorNeedsACompliantColumn) {
+  try {
+    loadSimConfig({scenario("sinusoid.yaml")}, {"steering.angle_sensor=column"});
+    FAIL() << "expected a ConfigError";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("steering.angle_sensor"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SensorModel, RoadBankMovesTheCarLikeWindButTheAccelerometerDoesNotSenseIt) {
+  // A lateral force of 400 N from wind (a real acceleration, sensed) or from a banked road (gravity,
+  // which an accelerometer does not sense): the same motion, the logged a_y lower by F / m.
+  const std::vector<std::string> common = {"disturbance.lateral_force=400", "simulation.duration=10"};
+  auto with = [&](const std::string& kind) {
+    auto sets = common;
+    sets.push_back("disturbance.kind=" + kind);
+    return run("sinusoid.yaml", sets);
+  };
+  const RunResult wind = with("aerodynamic"), bank = with("road_bank");
+  const double mass = loadSimConfig({scenario("sinusoid.yaml")}).vehicle.mass;
+  ASSERT_EQ(wind.rows.size(), bank.rows.size());
+  for (std::size_t i = 1; i < wind.rows.size(); ++i) {
+    ASSERT_EQ(wind.rows[i].state.y, bank.rows[i].state.y);
+    ASSERT_NEAR(wind.rows[i].state.lateral_acceleration - bank.rows[i].state.lateral_acceleration, 400.0 / mass, 1e-9);
+  }
+}
+
+}  // namespace
+}  // namespace lane_keeping
