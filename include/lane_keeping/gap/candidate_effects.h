@@ -13,8 +13,11 @@
 ///   cornering_stiffness  front_scale, rear_scale (1)             tire.{front,rear}.lateral_stiffness (x scale)
 ///   lateral_disturbance  force (N), moment (N m)                 disturbance.lateral_force, .yaw_moment
 ///   pose_bias            y (m), psi (rad)                        tracker.pose_bias_y, .pose_bias_psi (+)
+///     (localisation)     psi (rad)                               sensors.pose_bias_psi (+): tracker and log
 ///   steering_compliance  stiffness (N m/rad), damping (N m s/rad), steering.column_stiffness, .column_damping,
 ///                        inertia (kg m^2)                          .column_inertia
+///     (motor_sensor)     the same                                + steering.angle_sensor = column
+///   lateral_disturbance (road_bank): the same as lateral_disturbance + disturbance.kind = road_bank
 ///   inertia              yaw_scale, mass_scale (1)               vehicle.yaw_inertia, vehicle.mass (x scale)
 #include <functional>
 #include <map>
@@ -46,13 +49,21 @@ struct CandidateEffect {
   bool profile = false;
   /// Writes the effect with parameters `theta` into `config` (a copy of the nominal one).
   std::function<void(const std::vector<double>& theta, SimConfig& config)> apply;
+  /// Where the effect sits, for effects with several placements (docs/gap.md, "Where each candidate
+  /// acts"): each form is fitted, the one that fits the training data best stands for the effect.
+  std::string form;
+
+  /// "pose_bias (localisation)", or the bare name for an effect with one form.
+  std::string label() const { return form.empty() ? name : name + " (" + form + ")"; }
 };
 
-/// The eleven candidates, in DESIGN §5 order.
+/// The eleven candidates, in DESIGN §5 order, with the further forms of pose_bias, steering_compliance
+/// and lateral_disturbance after their first.
 const std::vector<CandidateEffect>& candidateEffects();
+/// The first form of the named effect.
 const CandidateEffect& candidateEffect(const std::string& name);
-/// Whether the named effect changes the replay of `subsystem` (a candidate can be the cause of a gap
-/// only in a subsystem it changes).
+/// Whether the named effect, in any of its forms, changes the replay of `subsystem` (a candidate can be
+/// the cause of a gap only in a subsystem it changes).
 bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem);
 
 /// Pairs the data of a lane-keeping run cannot always tell apart (reported as such when both score

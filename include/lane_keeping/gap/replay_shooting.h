@@ -7,6 +7,7 @@
 #include <Eigen/QR>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,22 @@ ReplayTrace makeTrace(const std::string& name, const std::vector<double>& measur
 SingleTrackModel replayModel(const SimConfig& config, const LogSignals& log);
 /// Sets V and dV/dt at `t` from the log into `model` when the log's speed varies (else nothing).
 void imposeLoggedSpeed(SingleTrackModel& model, const LogSignals& log, double t, std::size_t* hint);
+
+/// The true lateral velocity of G in the body frame at t from the logged motion (LogSignals::kSigma1 is
+/// -x' sin psi + y' cos psi with the logged psi): with a localisation heading bias b (config.sensors) the
+/// true heading is psi - b, which turns the logged velocity by b.
+inline double trueLateralVelocity(const LogSignals& log, const SensorParams& sensors, double t) {
+  const double sigma1 = log.at(LogSignals::kSigma1, t);
+  if (sensors.pose_bias_psi == 0.0) return sigma1;
+  const double b = sensors.poseBiasScale(log.at(LogSignals::kX, t)) * sensors.pose_bias_psi;
+  const double psi = log.at(LogSignals::kPsi, t);
+  const double u = log.at(LogSignals::kXDot, t) * std::cos(psi) + log.at(LogSignals::kYDot, t) * std::sin(psi);
+  return sigma1 * std::cos(b) + u * std::sin(b);
+}
+/// The true yaw rate at t: the logged one less the gyro's bias (config.sensors).
+inline double trueYawRate(const LogSignals& log, const SensorParams& sensors, double t, std::size_t* hint = nullptr) {
+  return (hint ? log.at(LogSignals::kYawRate, t, hint) : log.at(LogSignals::kYawRate, t)) - sensors.yaw_rate_bias;
+}
 
 /// Shooting intervals [a, b) covering the segments.
 std::vector<TimeSegment> shootingIntervals(const std::vector<TimeSegment>& segments, double horizon);

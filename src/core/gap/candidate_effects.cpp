@@ -83,7 +83,21 @@ std::vector<CandidateEffect> buildCandidates() {
                   [](const std::vector<double>& p, SimConfig& c) {
                     c.disturbance.lateral_force += p[0];
                     c.disturbance.yaw_moment += p[1];
-                  }});
+                  },
+                  "aerodynamic"});
+  // A banked road pushes the car like a crosswind, but it is gravity: the lateral accelerometer does
+  // not sense it (the logged a_y lacks F / m), which the chassis replay's a_y shows.
+  list.push_back({"lateral_disturbance",
+                  "a steady lateral force and yaw moment from a banked road (the accelerometer does not sense it)",
+                  {{"force", "N", 0.0, -2e4, 2e4, false}, {"moment", "N m", 0.0, -2e4, 2e4, false}},
+                  {"chassis", "steering"},
+                  false,
+                  [](const std::vector<double>& p, SimConfig& c) {
+                    c.disturbance.kind = "road_bank";
+                    c.disturbance.lateral_force += p[0];
+                    c.disturbance.yaw_moment += p[1];
+                  },
+                  "road_bank"});
   list.push_back({"pose_bias",
                   "the localisation the tracker uses is offset",
                   {{"y", "m", 0.0, -3.0, 3.0, false}, {"psi", "rad", 0.0, -0.3, 0.3, false}},
@@ -92,7 +106,18 @@ std::vector<CandidateEffect> buildCandidates() {
                   [](const std::vector<double>& p, SimConfig& c) {
                     c.tracker.pose_bias_y += p[0];
                     c.tracker.pose_bias_psi += p[1];
-                  }});
+                  },
+                  "tracker"});
+  // The localisation the tracker uses is the one the log records: the tracker replay already sees
+  // the bias (nothing to fit there); the chassis replay, started from the logged heading, integrates
+  // the biased heading into y. A y bias alone is unobservable (shifted initial y, shifted output).
+  list.push_back({"pose_bias",
+                  "the localisation (used by the tracker and recorded in the log) is offset in heading",
+                  {{"psi", "rad", 0.0, -0.3, 0.3, false}},
+                  {"chassis", "steering"},  // the steering replay takes its lateral velocity from the chassis'
+                  false,
+                  [](const std::vector<double>& p, SimConfig& c) { c.sensors.pose_bias_psi += p[0]; },
+                  "localisation"});
   list.push_back({"steering_compliance",
                   "a torsionally compliant steering column between actuator and wheel",
                   // The column's inertia is fitted too: a nominal with a rigid column has no use for
@@ -106,7 +131,25 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.steering.column_stiffness = p[0];
                     c.steering.column_damping = p[1];
                     c.steering.column_inertia = p[2];
-                  }});
+                  },
+                  "wheel_sensor"});
+  // The same column with the actuator's angle sensor on the motor side: the PID closes on the column
+  // angle, which the log does not hold; the actuator replay reconstructs it from the logged torque
+  // and road-wheel angle.
+  list.push_back({"steering_compliance",
+                  "a torsionally compliant steering column, the actuator sensing the motor side",
+                  {{"stiffness", "N m/rad", 5000.0, 100.0, 1e6, true},
+                   {"damping", "N m s/rad", 5.0, 0.1, 100.0, true},
+                   {"inertia", "kg m^2", 0.02, 0.01, 0.5, true}},
+                  {"steering", "actuator"},
+                  false,
+                  [](const std::vector<double>& p, SimConfig& c) {
+                    c.steering.column_stiffness = p[0];
+                    c.steering.column_damping = p[1];
+                    c.steering.column_inertia = p[2];
+                    c.steering.angle_sensor = "column";
+                  },
+                  "motor_sensor"});
   list.push_back({"inertia",
                   "the car's yaw inertia and mass differ",
                   {{"yaw_scale", "", 1.0, 0.2, 5.0, true}, {"mass_scale", "", 1.0, 0.5, 2.0, true}},
@@ -152,8 +195,13 @@ const CandidateEffect& candidateEffect(const std::string& name) {
 }
 
 bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem) {
-  const CandidateEffect& e = candidateEffect(effect);
-  return std::find(e.subsystems.begin(), e.subsystems.end(), subsystem) != e.subsystems.end();
+  candidateEffect(effect);  // throws on an unknown name
+  for (const auto& e : candidateEffects()) {
+    if (e.name == effect && std::find(e.subsystems.begin(), e.subsystems.end(), subsystem) != e.subsystems.end()) {
+      return true;
+    }
+  }
+  return false;
 }
 
 const std::vector<std::string>& knownLookAlikes(const std::string& effect) {

@@ -16,6 +16,8 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   SubsystemReplay out;
   out.name = "chassis";
   SingleTrackModel model = replayModel(config, log);
+  const SensorParams& sensors = config.sensors;
+  const double mass = config.vehicle.mass;
   const int n_full = model.stateSize();
   const int front0 = model.frontTireOffset(), front_n = model.frontTire().stateSize();
   const int rear0 = model.rearTireOffset(), rear_n = model.rearTire().stateSize();
@@ -82,17 +84,20 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     if (samples.empty()) continue;
     const double t0 = interval.t0;
     Eigen::VectorXd q0 = Eigen::VectorXd::Zero(n);
+    // The logged pose and yaw rate are what the sensors report (config.sensors): start from the truth
+    // they imply, and report the replayed motion through the same sensors.
     q0[0] = log.at(C::kX, t0);
-    q0[1] = log.at(C::kY, t0);
-    q0[2] = log.at(C::kPsi, t0);
-    q0[3] = log.at(C::kSigma1, t0);
-    q0[4] = log.at(C::kYawRate, t0);
+    const double bias0 = sensors.poseBiasScale(q0[0]);
+    q0[1] = log.at(C::kY, t0) - bias0 * sensors.pose_bias_y;
+    q0[2] = log.at(C::kPsi, t0) - bias0 * sensors.pose_bias_psi;
+    q0[3] = trueLateralVelocity(log, sensors, t0);
+    q0[4] = trueYawRate(log, sensors, t0);
     if (front_n + rear_n > 0) {
       // Both tires' states at t0, driven by the logged steering, yaw rate and sigma1 before it.
       Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
       const auto logged = [&](double t) {
-        motion[3] = log.at(C::kSigma1, t);
-        motion[4] = log.at(C::kYawRate, t);
+        motion[3] = trueLateralVelocity(log, sensors, t);
+        motion[4] = trueYawRate(log, sensors, t);
         assemble(t, motion);
       };
       const Eigen::VectorXd z = tireStatesAfterLeadIn(model, true, log.start(), t0, step, logged, full, full_dot);
@@ -116,12 +121,13 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
           return false;
         }
         outputs(k, outputs_n) = q[3];  // sigma1: projected, not compared
-        outputs(k, 0) = q[4];
-        outputs(k, 1) = q[2];
-        outputs(k, 2) = q[1];
+        const double bias = sensors.poseBiasScale(q[0]);
+        outputs(k, 0) = q[4] + sensors.yaw_rate_bias;
+        outputs(k, 1) = q[2] + bias * sensors.pose_bias_psi;
+        outputs(k, 2) = q[1] + bias * sensors.pose_bias_y;
         if (with_ay) {
-          f(t, q, q_dot);  // a_y = sigma1' + sigma2 u at this state
-          outputs(k, 3) = q_dot[3] + q[4] * last_u;
+          f(t, q, q_dot);  // a_y = sigma1' + sigma2 u at this state, less what the accelerometer does not sense
+          outputs(k, 3) = q_dot[3] + q[4] * last_u - model.unsensedLateralForce(full.data()) / mass;
         }
       }
       return true;

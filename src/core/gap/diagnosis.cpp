@@ -11,6 +11,7 @@
 #include "lane_keeping/gap/bounded_refit.h"
 #include "lane_keeping/gap/candidate_effects.h"
 #include "lane_keeping/gap/candidate_fit.h"
+#include "lane_keeping/gap/candidate_forms.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/evaluation.h"
 #include "lane_keeping/gap/how_far.h"
@@ -150,7 +151,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     if (std::none_of(c.subsystems.begin(), c.subsystems.end(), [&](const std::string& s) { return all.count(s) > 0; })) {
       std::string changes;
       for (const auto& s : c.subsystems) changes += (changes.empty() ? "" : ", ") + s;
-      report.not_testable.push_back({c.name, "changes only the " + changes + " replay, which the logs cannot feed"});
+      report.not_testable.push_back({c.label(), "changes only the " + changes + " replay, which the logs cannot feed"});
       continue;
     }
     candidates.push_back(&c);
@@ -165,9 +166,9 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
         fits[i] = fitCandidate(*candidates[i], fit_context, options);
         fit_seconds[i] = secondsSince(start);
       },
-      [&](std::size_t i) { say("fitting " + candidates[i]->name); });
+      [&](std::size_t i) { say("fitting " + candidates[i]->label()); });
   for (std::size_t i = 0; i < candidates.size(); ++i) {
-    report.wall_seconds.emplace_back("fit " + candidates[i]->name, fit_seconds[i]);
+    report.wall_seconds.emplace_back("fit " + candidates[i]->label(), fit_seconds[i]);
   }
   // Fits whose closed loop leaves the logged bounds, fitted again under them where that could change
   // the verdict (bounded_refit.h).
@@ -177,7 +178,8 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   }
   report.wall_seconds.emplace_back("which", secondsSince(which_start));
 
-  // ---- Verdict (verdict.h, partial_explanation.h) ----------------------------------------------------
+  // ---- Verdict (candidate_forms.h, verdict.h, partial_explanation.h) ----------------------------------
+  keepBestForms(&fits, &report.notes);
   report.ranking = rankFits(fits, nominal, gap_before, &report.notes);
   VerdictContext context;
   context.pinned = pinnedEffects(fits);

@@ -23,6 +23,7 @@ std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const 
   for (const auto& fit : fits) {
     RankedEffect r;
     r.effect = fit.effect->name;
+    r.form = fit.effect->form;
     r.heldout_gap_before = gap_before;
     if (!fit.ok) {
       r.heldout_gap_after = gap_before;

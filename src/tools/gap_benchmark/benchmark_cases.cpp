@@ -42,8 +42,22 @@ SimConfig benchmarkNominal(const std::string& manoeuvre) {
     c.path.sinusoid_amplitude = 1.5;
     c.path.sinusoid_wavelength = 120.0;
     c.path.sinusoid_start = 15.0;
+  } else if (manoeuvre == "straight") {
+    c.path.type = "straight";  // the initial offset (the case's set-up) is the manoeuvre
+  } else if (manoeuvre == "bend") {
+    // A raised-cosine lane shift of 2.5 m over 80 m, then a bend of radius 800 m to the left: shapes
+    // the candidates' benchmark does not use.
+    c.path.type = "waypoints";
+    c.path.waypoints.clear();
+    auto profile = [](double x) {
+      const double u = std::clamp((x - 40.0) / 80.0, 0.0, 1.0);
+      const double shift = 2.5 * 0.5 * (1.0 - std::cos(M_PI * u));
+      const double d = std::max(0.0, x - 200.0);
+      return shift + d * d / (2.0 * 800.0);
+    };
+    for (double x = -20; x <= 700; x += 5) c.path.waypoints.push_back({x, profile(x)});
   } else {
-    throw ConfigError("benchmark manoeuvre '" + manoeuvre + "' is unknown; allowed: lane_change, sinusoid");
+    throw ConfigError("benchmark manoeuvre '" + manoeuvre + "' is unknown; allowed: lane_change, sinusoid, straight, bend");
   }
   return c;
 }
@@ -119,18 +133,124 @@ std::vector<std::string> truthOverlay(const std::string& effect, bool large, dou
   throw ConfigError("benchmark effect '" + effect + "' is unknown");
 }
 
+double peakTorque(const SimConfig& config) {
+  const RunResult run = ClosedLoop(config).run();
+  double peak = 0.0;
+  for (const auto& row : run.rows) peak = std::max(peak, std::fabs(row.torque_command));
+  return peak;
+}
+
 double nominalPeakTorque(const std::string& manoeuvre) {
   static std::map<std::string, double> cache;
   const auto it = cache.find(manoeuvre);
   if (it != cache.end()) return it->second;
-  const RunResult run = ClosedLoop(benchmarkNominal(manoeuvre)).run();
-  double peak = 0.0;
-  for (const auto& row : run.rows) peak = std::max(peak, std::fabs(row.torque_command));
-  cache[manoeuvre] = peak;
-  return peak;
+  return cache[manoeuvre] = peakTorque(benchmarkNominal(manoeuvre));
+}
+
+SimConfig withAssignments(const SimConfig& base, const std::vector<std::string>& assignments, const char* origin) {
+  FlatParams flat;
+  std::ostringstream yaml;
+  base.print(yaml);
+  flat.overlayText(yaml.str(), origin);
+  for (const auto& assignment : assignments) flat.overlayAssignment(assignment);
+  return simConfigFromFlat(flat);
 }
 
 }  // namespace
+
+std::vector<BenchmarkCase> independentCases() {
+  std::vector<BenchmarkCase> cases;
+  unsigned seed = 5000;
+  const std::string short_run = "simulation.duration=20";
+  auto add = [&](const std::string& id, const std::string& category, const std::string& truth, const std::string& magnitude,
+                 const std::string& manoeuvre, std::vector<std::string> overlay, std::vector<std::string> setup,
+                 double log_rate = 0.0, double noise_scale = 1.0) {
+    setup.insert(setup.begin(), short_run);
+    BenchmarkCase c{id, category, truth, magnitude, manoeuvre, std::move(overlay), ++seed};
+    c.setup = std::move(setup);
+    c.log_rate = log_rate;
+    c.noise_scale = noise_scale;
+    cases.push_back(std::move(c));
+  };
+  for (const bool large : {false, true}) {
+    const std::string size = large ? "large" : "small";
+    auto pick = [&](double small, double big) { return num(large ? big : small); };
+    // Where real cars have them: a localisation bias that the log records too (y and psi, varying).
+    for (const std::string m : {"bend", "sinusoid"}) {
+      add("pose_bias-localisation-" + size + "-" + m, "in_list", "pose_bias", size, m,
+          {"sensors.pose_bias_y=" + pick(0.08, 0.2), "sensors.pose_bias_psi=" + pick(0.004, 0.01),
+           "sensors.pose_bias_variation=0.3", "sensors.pose_bias_wavelength=250"},
+          {});
+    }
+    // A progressive column whose angle sensor sits on the motor side; p other than the default.
+    for (const std::string m : {"lane_change", "bend"}) {
+      add("steering_compliance-motor_sensor-" + size + "-" + m, "in_list", "steering_compliance", size, m,
+          {"steering.column_stiffness=" + pick(4000, 1500), "steering.column_damping=15", "steering.column_inertia=0.05",
+           "steering.column_stiffening_angle=0.03", "steering.angle_sensor=column"},
+          {m == "bend" ? "actuator.p=1500" : "actuator.p=700"});
+    }
+    // A banked road: gravity pushes the car, the accelerometer does not sense it; other tracker gains.
+    for (const std::string m : {"sinusoid", "bend"}) {
+      add("lateral_disturbance-road_bank-" + size + "-" + m, "in_list", "lateral_disturbance", size, m,
+          {"disturbance.kind=road_bank", "disturbance.lateral_force=" + pick(250, 600)},
+          {m == "bend" ? "tracker.k_y=0.08" : "tracker.k_y=0.03"});
+    }
+    // A sensing delay on a 1 kHz log with a weak actuator and a stiff tracker.
+    add("sensing_delay-" + size + "-bend-1kHz", "in_list", "sensing_delay", size, "bend",
+        {"delays.pose_to_tracker=" + num(0.2 + (large ? 0.061 : 0.029))}, {"actuator.p=500", "tracker.k_y=0.1"}, 1000.0);
+    // Tire lag from a 3 m initial offset on a straight road (the transient carries it), 100 Hz.
+    add("tire_lag-" + size + "-straight-100Hz", "in_list", "tire_lag", size, "straight",
+        {"tire.front.model=lugre_distributed", "tire.rear.model=lugre_distributed", "tire.front.lugre.bristles=40",
+         "tire.rear.lugre.bristles=40", "tire.front.relaxation_length=" + pick(0.3, 0.7),
+         "tire.rear.relaxation_length=" + pick(0.3, 0.7)},
+        {"simulation.initial.y=3", "tracker.excitation_amplitude=0.004"}, 100.0);
+    // Friction on a strong actuator with noisier sensors.
+    add("steering_friction-" + size + "-lane_change-p2000", "in_list", "steering_friction", size, "lane_change",
+        {"steering.friction_model=lugre", "steering.coulomb_friction=" + pick(2.0, 5.0),
+         "steering.breakaway_friction=" + pick(3.0, 7.0), "steering.friction_velocity=0.02", "steering.friction_stiffness=2e4"},
+        {"actuator.p=2000"}, 0.0, 1.5);
+    // Out of the list, on the sensors: a localisation latency, a yaw-rate sensor bias.
+    for (const std::string m : {"bend", "lane_change"}) {
+      add("localisation_latency-" + size + "-" + m, "out_of_list", "localisation_latency", size, m,
+          {"sensors.pose_latency=" + pick(0.04, 0.1)}, {});
+      add("yaw_rate_bias-" + size + "-" + m, "out_of_list", "yaw_rate_bias", size, m,
+          {"sensors.yaw_rate_bias=" + pick(0.003, 0.008)}, {});
+    }
+  }
+  // 40 no-effect logs over set-ups the candidates' benchmark does not use.
+  const std::vector<std::string> manoeuvres{"straight", "lane_change", "sinusoid", "bend"};
+  const std::vector<double> strengths{500, 750, 1000, 1250, 1500, 2000};
+  const std::vector<double> gains{0.03, 0.05, 0.08, 0.1};
+  const std::vector<double> offsets{1.0, -2.0, 3.0, -3.0, 2.5};
+  const std::vector<double> rates{100.0, 500.0, 1000.0, 500.0};
+  const std::vector<double> noise{0.5, 1.0, 1.5, 0.75, 1.25};
+  for (int i = 0; i < 40; ++i) {
+    const std::string m = manoeuvres[i % manoeuvres.size()];
+    std::vector<std::string> setup{"actuator.p=" + num(strengths[i % strengths.size()]),
+                                   "tracker.k_y=" + num(gains[(i / 2) % gains.size()])};
+    if (m == "straight") {
+      setup.push_back("simulation.initial.y=" + num(offsets[(i / 4) % offsets.size()]));
+      setup.push_back("tracker.excitation_amplitude=0.004");
+    } else if (i % 3 == 0) {
+      setup.push_back("simulation.initial.y=" + num(0.5 * offsets[(i / 3) % offsets.size()]));
+    }
+    const double rate = rates[(i / 3) % rates.size()];
+    add("none-" + std::to_string(i + 1) + "-" + m + "-p" + num(strengths[i % strengths.size()]) + "-" + num(rate) + "Hz",
+        "none", "none", "", m, {}, setup, rate, noise[i % noise.size()]);
+  }
+  return cases;
+}
+
+std::vector<BenchmarkCase> familyCases(const std::string& family) {
+  if (family == "candidates") return benchmarkCases();
+  if (family == "independent") return independentCases();
+  throw ConfigError("benchmark family '" + family + "' is unknown; allowed: candidates, independent");
+}
+
+SimConfig benchmarkCaseNominal(const BenchmarkCase& c) {
+  const SimConfig base = benchmarkNominal(c.manoeuvre);
+  return c.setup.empty() ? base : withAssignments(base, c.setup, "benchmark set-up");
+}
 
 std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre) {
   std::vector<BenchmarkCase> cases;
@@ -166,21 +286,21 @@ std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre) {
 
 SimConfig benchmarkTruth(const BenchmarkCase& c) {
   // Apply key=value assignments through the same loader the tools use.
-  FlatParams flat;
-  std::ostringstream yaml;
-  benchmarkNominal(c.manoeuvre).print(yaml);
-  flat.overlayText(yaml.str(), "benchmark nominal");
-  for (const auto& assignment : c.truth_overlay) flat.overlayAssignment(assignment);
-  return simConfigFromFlat(flat);
+  return withAssignments(benchmarkCaseNominal(c), c.truth_overlay, "benchmark nominal");
 }
 
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise, double log_rate) {
   SimConfig truth = benchmarkTruth(c);
-  truth.simulation.log_rate = log_rate;
+  truth.simulation.log_rate = c.log_rate > 0.0 ? c.log_rate : log_rate;
   const RunResult run = ClosedLoop(truth).run();
   if (run.diverged()) throw LaneKeepingError("benchmark case " + c.id + ": the truth run " + run.message);
   GapLog log = gapLogFromRows(run.rows, c.id + ".csv");
-  addSensorNoise(log, noise, c.seed);
+  SensorNoise scaled = noise;
+  for (double* level : {&scaled.position, &scaled.heading, &scaled.yaw_rate, &scaled.steering, &scaled.steering_rate,
+                        &scaled.torque, &scaled.lateral_acceleration, &scaled.speed}) {
+    *level *= c.noise_scale;
+  }
+  addSensorNoise(log, scaled, c.seed);
   return log;
 }
 

@@ -29,6 +29,12 @@ struct BenchmarkCase {
   std::string manoeuvre;           ///< lane_change | sinusoid
   std::vector<std::string> truth_overlay;  ///< key=value on top of the nominal configuration
   unsigned seed = 1;               ///< noise seed
+  /// The independent family: the case's own set-up (key=value on the manoeuvre's nominal, known to the
+  /// diagnosis: gains, actuator strength, initial state, duration), its log rate (0: the command
+  /// line's) and a factor on every sensor noise level.
+  std::vector<std::string> setup;
+  double log_rate = 0.0;
+  double noise_scale = 1.0;
 };
 
 /// The nominal configuration of a manoeuvre (lumped LuGre tires, the paper's vehicle, k_psi = 0.8,
@@ -38,7 +44,17 @@ SimConfig benchmarkNominal(const std::string& manoeuvre);
 /// All cases: 11 effects x 2 magnitudes x 2 manoeuvres, `none_per_manoeuvre` no-effect logs per
 /// manoeuvre, and 3 out-of-list effects x 2 magnitudes x 2 manoeuvres.
 std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre = 6);
-/// The truth configuration of a case: its manoeuvre's nominal with the case's overlay applied.
+/// The independent family, made with choices the candidates did not make (docs/gap.md): effects where
+/// real cars have them (a localisation bias the log records too, a column sensed on the motor side, a
+/// road bank the accelerometer does not sense), other path shapes (a bend, a straight road with initial
+/// offsets up to 3 m), actuator strengths p 500-2000, other tracker gains, 100 Hz and 1 kHz logs, noise
+/// levels +-50 %; 40 no-effect logs over those set-ups; out-of-list effects on the sensors.
+std::vector<BenchmarkCase> independentCases();
+/// The cases of a family: "candidates" (benchmarkCases()) or "independent".
+std::vector<BenchmarkCase> familyCases(const std::string& family);
+/// The nominal configuration the diagnosis of a case is given: its manoeuvre's with the case's set-up.
+SimConfig benchmarkCaseNominal(const BenchmarkCase& c);
+/// The truth configuration of a case: its nominal with the case's overlay applied.
 SimConfig benchmarkTruth(const BenchmarkCase& c);
 /// Simulates the truth of a case and returns its noisy log (throws if the truth run diverges).
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise = {}, double log_rate = 500.0);
