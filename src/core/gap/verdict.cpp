@@ -83,6 +83,9 @@ const SubsystemGap* subsystemGap(const GapWhere* where, const std::string& name)
 }
 
 std::string pValue(const DetectionTest& test, int draws) {
+  // Without draws (the nominal closed loop could not be simulated over the log) nothing is calibrated:
+  // detection falls back to the net gap's threshold, and the words must not suggest a test was made.
+  if (draws == 0) return "no noise-only draws, so no calibrated test: see the notes";
   return "p = " + formatNumber(std::round(1000.0 * test.p_value) / 1000.0) + " among " + std::to_string(draws) +
          " noise-only draws";
 }
