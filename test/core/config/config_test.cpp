@@ -45,6 +45,8 @@ TEST(ConfigFiles, EveryShippedConfigLoadsAndValidates) {
   auto files = yamlFiles(kSource + "/config");
   const auto scenarios = yamlFiles(kSource + "/config/scenarios");
   files.insert(files.end(), scenarios.begin(), scenarios.end());
+  const auto vehicles = yamlFiles(kSource + "/config/vehicles");  // with a log: section, which lk_simulate ignores
+  files.insert(files.end(), vehicles.begin(), vehicles.end());
   ASSERT_GE(files.size(), 7u);
   for (const auto& file : files) {
     SCOPED_TRACE(file);
