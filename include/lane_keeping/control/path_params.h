@@ -34,7 +34,8 @@ struct PathParams {
     v.number(prefix + "sinusoid.wavelength", sinusoid_wavelength, "m", Range::positive(), "wavelength");
     v.number(prefix + "sinusoid.start", sinusoid_start, "m", Range::any(),
              "x where the sinusoid starts (amplitude fades in over one wavelength)");
-    v.points(prefix + "waypoints", waypoints, "m", "[[x, y], ...] with strictly increasing x (waypoints type)");
+    v.points(prefix + "waypoints", waypoints, "m", "[[x, y], ...] with strictly increasing x (waypoints type), or the name of a CSV file of x,y lines "
+             "(relative to this file; a lane from a map)");
   }
 
   void validate(const std::string& prefix, std::vector<ConfigProblem>& problems) const {

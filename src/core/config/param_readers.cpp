@@ -1,4 +1,5 @@
 #include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/config/points_file.h"
 
 #include <cmath>
 #include <cstdio>
@@ -139,8 +140,19 @@ void FlatParamReader::points(const std::string& key, std::vector<Point2>& value,
   const FlatParams::Entry* entry = source_.find(key);
   if (entry == nullptr) return;
   used_.insert(key);
+  if (entry->value.IsScalar()) {
+    // A file of points (points_file.h), beside the configuration file that names it.
+    std::vector<Point2> parsed;
+    std::string error;
+    if (!readPointsCsv(resolveBeside(entry->value.Scalar(), entry->location), &parsed, &error)) {
+      fail(key, "= " + entry->value.Scalar() + ": " + error);
+      return;
+    }
+    value = std::move(parsed);
+    return;
+  }
   if (!entry->value.IsSequence()) {
-    fail(key, "= " + scalarText(entry->value) + ": expected a list of [x, y] pairs");
+    fail(key, "= " + scalarText(entry->value) + ": expected a list of [x, y] pairs, or the name of a CSV file of them");
     return;
   }
   std::vector<Point2> parsed;

@@ -142,5 +142,25 @@ TEST(CoreLibrary, HasNoRosInclude) {
   EXPECT_EQ(hits, "") << "ROS includes in the core: " << hits;
 }
 
+TEST(ConfigFiles, WaypointsFromACsvFileBesideTheYaml) {
+  // A lane from a map: path.waypoints names a CSV file (header and comments skipped), relative to the YAML.
+  writeTemp("lane_points.csv", "x,y\n# a comment\n0,0\n50,0.5\n100,2\n");
+  const std::string file = writeTemp("lane_from_csv.yaml", "path:\n  type: waypoints\n  waypoints: lane_points.csv\n");
+  const SimConfig c = loadSimConfig({file});
+  ASSERT_EQ(c.path.waypoints.size(), 3u);
+  EXPECT_EQ(c.path.waypoints[1][0], 50.0);
+  EXPECT_EQ(c.path.waypoints[2][1], 2.0);
+}
+
+TEST(ConfigErrors, ABadLineOfAWaypointsFileNamesTheFileAndLine) {
+  writeTemp("bad_points.csv", "x,y\n0,0\n50,oops\n");
+  const std::string file = writeTemp("lane_bad.yaml", "path:\n  type: waypoints\n  waypoints: bad_points.csv\n");
+  const std::string error = errorOf({file});
+  EXPECT_NE(error.find("path.waypoints"), std::string::npos) << error;
+  EXPECT_NE(error.find("bad_points.csv:3"), std::string::npos) << error;
+  const std::string missing = writeTemp("lane_missing.yaml", "path:\n  type: waypoints\n  waypoints: nowhere.csv\n");
+  EXPECT_NE(errorOf({missing}).find("cannot open the points file"), std::string::npos) << errorOf({missing});
+}
+
 }  // namespace
 }  // namespace lane_keeping

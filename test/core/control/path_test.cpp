@@ -1,0 +1,112 @@
+// Lane queries: the closest point equals a brute-force search on random poses, also on winding lanes
+// where a local search settles on a farther root; long lanes (100,000 waypoints) build in linear time.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <random>
+
+#include "lane_keeping/control/path.h"
+#include "lane_keeping/control/path_params.h"
+
+namespace lane_keeping {
+namespace {
+
+std::shared_ptr<const Path> waypointLane(const std::vector<Point2>& points) {
+  PathParams p;
+  p.type = "waypoints";
+  p.waypoints = points;
+  return createPath(p);
+}
+
+/// The closest point by brute force: the squared distance sampled every millimetre over a window wider
+/// than any candidate, then refined by golden section around the best sample.
+double bruteForceDistance(const Path& path, double px, double py, double window) {
+  auto d2 = [&](double x) {
+    double f, f1, f2;
+    path.evaluate(x, &f, &f1, &f2);
+    return (x - px) * (x - px) + (f - py) * (f - py);
+  };
+  double best_x = px, best = d2(px);
+  for (double x = px - window; x <= px + window; x += 1e-3) {
+    const double d = d2(x);
+    if (d < best) {
+      best = d;
+      best_x = x;
+    }
+  }
+  double a = best_x - 1e-3, b = best_x + 1e-3;
+  for (int i = 0; i < 60; ++i) {
+    const double m1 = a + 0.382 * (b - a), m2 = a + 0.618 * (b - a);
+    (d2(m1) < d2(m2) ? b : a) = d2(m1) < d2(m2) ? m2 : m1;
+  }
+  return std::sqrt(d2(0.5 * (a + b)));
+}
+
+double projectedDistance(const Path& path, double px, double py) {
+  const double x = path.project(px, py);
+  double f, f1, f2;
+  path.evaluate(x, &f, &f1, &f2);
+  return std::hypot(x - px, f - py);
+}
+
+TEST(Path, ClosestPointEqualsBruteForceOnAWindingLane) {
+  // Hairpin-like zig-zags: y = 6 sin(x / 2) has slopes up to 3 (72 degrees) and lobes 6.3 m apart, so that
+  // from many poses the nearest lobe is not the one above the car and Newton from x = px can stop on a
+  // farther root of the distance's derivative.
+  std::vector<Point2> points;
+  for (double x = -10.0; x <= 60.0; x += 0.5) points.push_back({x, 6.0 * std::sin(0.5 * x)});
+  const auto lane = waypointLane(points);
+  std::mt19937 random(7);
+  std::uniform_real_distribution<double> along(0.0, 50.0), off(-8.0, 8.0);
+  int farther_root_cases = 0;
+  for (int i = 0; i < 400; ++i) {
+    const double px = along(random);
+    double f, f1, f2;
+    lane->evaluate(px, &f, &f1, &f2);
+    const double py = f + off(random);
+    const double truth = bruteForceDistance(*lane, px, py, std::fabs(py - f) + 1.0);
+    const double found = projectedDistance(*lane, px, py);
+    ASSERT_NEAR(found, truth, 1e-6) << "pose (" << px << ", " << py << ")";
+    if (std::fabs(py - f) > 2.0) ++farther_root_cases;
+  }
+  EXPECT_GT(farther_root_cases, 100);  // the poses do reach beyond the neighbouring lobes
+}
+
+TEST(Path, ClosestPointEqualsBruteForceOnAnAnalyticLane) {
+  PathParams p;
+  p.type = "sinusoid";
+  p.sinusoid_amplitude = 4.0;
+  p.sinusoid_wavelength = 20.0;
+  p.sinusoid_start = 0.0;
+  const auto lane = createPath(p);
+  std::mt19937 random(11);
+  std::uniform_real_distribution<double> along(20.0, 200.0), off(-6.0, 6.0);
+  for (int i = 0; i < 300; ++i) {
+    const double px = along(random), py = off(random);
+    double f, f1, f2;
+    lane->evaluate(px, &f, &f1, &f2);
+    ASSERT_NEAR(projectedDistance(*lane, px, py), bruteForceDistance(*lane, px, py, std::fabs(py - f) + 1.0), 1e-6)
+        << "pose (" << px << ", " << py << ")";
+  }
+}
+
+TEST(Path, AHundredThousandWaypointsBuildAndMatchTheSplineThroughThem) {
+  // A lane from a map: 100,000 points at 0.5 m (50 km). The spline passes through every point, and
+  // queries far along it find the point below the car.
+  std::vector<Point2> points;
+  for (int i = 0; i < 100000; ++i) {
+    const double x = 0.5 * i;
+    points.push_back({x, 3.0 * std::sin(x / 80.0) + 0.5 * std::sin(x / 13.0)});
+  }
+  const auto lane = waypointLane(points);
+  for (int i : {1, 777, 50000, 99998}) {
+    double f, f1, f2;
+    lane->evaluate(points[i][0], &f, &f1, &f2);
+    ASSERT_NEAR(f, points[i][1], 1e-9);
+  }
+  EXPECT_NEAR(projectedDistance(*lane, 30000.0, points[60000][1] + 0.7), 0.7, 0.05);
+}
+
+}  // namespace
+}  // namespace lane_keeping
