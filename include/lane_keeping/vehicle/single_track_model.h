@@ -186,9 +186,9 @@ class SingleTrackModel {
   /// sense when it is a road bank's gravity component (DisturbanceParams::kind).
   double unsensedLateralForce(const double* x) const {
     if (!disturbance_.active() || disturbance_.sensedByAccelerometer()) return 0.0;
-    double scale = 1.0;
+    double scale = disturbance_.onsetScale(x[kX]);
     if (disturbance_.gust_amplitude != 0.0) {
-      scale = 1.0 + disturbance_.gust_amplitude * std::sin(2.0 * M_PI * x[kX] / disturbance_.gust_wavelength);
+      scale *= 1.0 + disturbance_.gust_amplitude * std::sin(2.0 * M_PI * x[kX] / disturbance_.gust_wavelength);
     }
     return scale * disturbance_.lateral_force;
   }
@@ -229,9 +229,9 @@ class SingleTrackModel {
     }
     if (disturbance_.active()) {
       // A force at G across the body does work on sigma1 only; gusts vary along the road.
-      T scale(1.0);
+      T scale = disturbance_.onsetScale(x[kX]);
       if (disturbance_.gust_amplitude != 0.0) {
-        scale = 1.0 + disturbance_.gust_amplitude * sin(2.0 * M_PI * x[kX] / disturbance_.gust_wavelength);
+        scale = scale * (1.0 + disturbance_.gust_amplitude * sin(2.0 * M_PI * x[kX] / disturbance_.gust_wavelength));
       }
       *f1 = *f1 + scale * disturbance_.lateral_force;
       *f2 = *f2 + scale * disturbance_.yaw_moment;

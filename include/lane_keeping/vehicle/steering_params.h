@@ -87,8 +87,22 @@ struct DisturbanceParams {
   /// road_bank: the lateral component of gravity on a banked road, which moves the car the same way but
   /// which an accelerometer does not sense (it measures specific force): the reported a_y lacks F / m.
   std::string kind = "aerodynamic";
+  /// [m] x from which the loads act, ramped in over kOnsetRamp (a crosswind past a cutting, an exposed
+  /// bridge, a banked section): an effect that sets in mid-run. 0 = from the start.
+  double onset_x = 0.0;
+  static constexpr double kOnsetRamp = 10.0;  ///< [m]
 
   bool active() const { return lateral_force != 0.0 || yaw_moment != 0.0; }
+  /// The onset's factor at x: 0 before onset_x, a smoothstep over kOnsetRamp, then 1. Templated for the
+  /// model's Jets (the comparisons read the value part).
+  template <typename T>
+  T onsetScale(const T& x) const {
+    if (onset_x == 0.0) return T(1.0);
+    const T u = (x - onset_x) / kOnsetRamp;
+    if (u <= 0.0) return T(0.0);
+    if (u >= 1.0) return T(1.0);
+    return u * u * (3.0 - 2.0 * u);
+  }
   bool sensedByAccelerometer() const { return kind != "road_bank"; }
   void visit(ParamVisitor& v, const std::string& prefix) {
     v.number(prefix + "lateral_force", lateral_force, "N", Range::any(),
@@ -99,6 +113,8 @@ struct DisturbanceParams {
     v.number(prefix + "gust_wavelength", gust_wavelength, "m", Range::positive(), "wavelength of the gusts");
     v.choice(prefix + "kind", kind, {"aerodynamic", "road_bank"},
              "aerodynamic (the accelerometer senses it) or road_bank (gravity: the logged a_y does not)");
+    v.number(prefix + "onset_x", onset_x, "m", Range::any(),
+             "x from which the loads act, ramped in over 10 m (an effect that sets in mid-run); 0 = from the start");
   }
 };
 

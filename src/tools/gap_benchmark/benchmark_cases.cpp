@@ -6,6 +6,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/gap/gap_run.h"
 #include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {
@@ -217,6 +218,49 @@ std::vector<BenchmarkCase> independentCases() {
           {"sensors.yaw_rate_bias=" + pick(0.003, 0.008)}, {});
     }
   }
+  // A crosswind that sets in mid-run (from x = 200 m, about 9 s into a 20 s run), which the diagnosis
+  // is not told: the training blocks before it show nothing.
+  for (const bool large : {false, true}) {
+    add(std::string("lateral_disturbance-onset-") + (large ? "large" : "small") + "-sinusoid", "in_list",
+        "lateral_disturbance", large ? "large" : "small", "sinusoid",
+        {"disturbance.lateral_force=" + num(large ? 500 : 250), "disturbance.yaw_moment=" + num(large ? 100 : 50),
+         "disturbance.onset_x=200"},
+        {"actuator.p=1250"});
+  }
+  // Runs of different roads: each case has a training run and a held-out run on another road, from
+  // another initial offset, of another duration (lk_gap --log a.csv --holdout b.csv --scenario b.yaml).
+  auto pair = [&](const std::string& id, const std::string& category, const std::string& truth,
+                  const std::string& manoeuvre, std::vector<std::string> overlay, std::vector<std::string> setup,
+                  const std::string& other, std::vector<std::string> other_setup) {
+    add(id, category, truth, category == "none" ? "" : "large", manoeuvre, std::move(overlay), std::move(setup));
+    cases.back().heldout_manoeuvre = other;
+    cases.back().heldout_setup = std::move(other_setup);
+  };
+  pair("steering_friction-pair-lane_change-bend", "in_list", "steering_friction", "lane_change",
+       {"steering.friction_model=lugre", "steering.coulomb_friction=4", "steering.breakaway_friction=6",
+        "steering.friction_velocity=0.02", "steering.friction_stiffness=2e4"},
+       {"actuator.p=1500"}, "bend", {"simulation.initial.y=-1", "simulation.duration=15"});
+  pair("lateral_disturbance-pair-sinusoid-straight", "in_list", "lateral_disturbance", "sinusoid",
+       {"disturbance.lateral_force=400", "disturbance.yaw_moment=80"}, {}, "straight",
+       {"simulation.initial.y=2", "simulation.duration=25"});
+  pair("pose_bias-localisation-pair-bend-sinusoid", "in_list", "pose_bias", "bend",
+       {"sensors.pose_bias_y=0.15", "sensors.pose_bias_psi=0.008"}, {"tracker.k_y=0.08"}, "sinusoid",
+       {"simulation.initial.y=0.5"});
+  pair("steering_compliance-motor_sensor-pair-lane_change-sinusoid", "in_list", "steering_compliance", "lane_change",
+       {"steering.column_stiffness=2000", "steering.column_damping=15", "steering.column_inertia=0.05",
+        "steering.angle_sensor=column"},
+       {"actuator.p=800"}, "sinusoid", {"simulation.duration=15"});
+  pair("cornering_stiffness-pair-sinusoid-lane_change", "in_list", "cornering_stiffness", "sinusoid",
+       {"tire.front.lateral_stiffness=1.4e6", "tire.rear.lateral_stiffness=1.4e6"}, {}, "lane_change",
+       {"simulation.initial.y=-0.5"});
+  pair("yaw_rate_bias-pair-bend-lane_change", "out_of_list", "yaw_rate_bias", "bend", {"sensors.yaw_rate_bias=0.006"},
+       {}, "lane_change", {"simulation.duration=15"});
+  pair("none-pair-1-lane_change-bend", "none", "none", "lane_change", {}, {"actuator.p=1250"}, "bend",
+       {"simulation.initial.y=1.5", "simulation.duration=15"});
+  pair("none-pair-2-sinusoid-straight", "none", "none", "sinusoid", {}, {"tracker.k_y=0.08"}, "straight",
+       {"simulation.initial.y=-2.5", "tracker.excitation_amplitude=0.004"});
+  pair("none-pair-3-bend-lane_change", "none", "none", "bend", {}, {"actuator.p=700"}, "lane_change",
+       {"simulation.duration=25"});
   // 40 no-effect logs over set-ups the candidates' benchmark does not use.
   const std::vector<std::string> manoeuvres{"straight", "lane_change", "sinusoid", "bend"};
   const std::vector<double> strengths{500, 750, 1000, 1250, 1500, 2000};
@@ -282,6 +326,51 @@ std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre) {
     }
   }
   return cases;
+}
+
+BenchmarkCase heldoutRunOf(const BenchmarkCase& c) {
+  BenchmarkCase h = c;
+  h.id = c.id + ".heldout";
+  h.manoeuvre = c.heldout_manoeuvre;
+  h.setup.insert(h.setup.end(), c.heldout_setup.begin(), c.heldout_setup.end());
+  h.seed = c.seed + 7919;
+  h.heldout_manoeuvre.clear();
+  h.heldout_setup.clear();
+  return h;
+}
+
+namespace {
+
+/// node[parts[i]][parts[i+1]]... = value. yaml-cpp: a Node variable declared from node[key] shares the
+/// map entry once it exists; assigning to a Node variable copies content instead, hence the recursion.
+void setNested(YAML::Node node, const std::vector<std::string>& parts, std::size_t i, const YAML::Node& value) {
+  if (i + 1 == parts.size()) {
+    node[parts[i]] = value;
+    return;
+  }
+  if (!node[parts[i]]) node[parts[i]] = YAML::Node(YAML::NodeType::Map);
+  setNested(node[parts[i]], parts, i + 1, value);
+}
+
+}  // namespace
+
+std::string benchmarkScenarioYaml(const BenchmarkCase& c) {
+  FlatParams flat;
+  std::ostringstream yaml;
+  benchmarkCaseNominal(c).print(yaml);
+  flat.overlayText(yaml.str(), "benchmark scenario");
+  YAML::Node root(YAML::NodeType::Map);  // a node of its own, so that copies share it
+  for (const auto& [key, entry] : flat.entries()) {
+    if (!isScenarioKey(key) || key.rfind("simulation.name", 0) == 0 || key.rfind("simulation.description", 0) == 0) continue;
+    // "a.b.c" -> root[a][b][c]
+    std::vector<std::string> parts;
+    std::stringstream in(key);
+    for (std::string part; std::getline(in, part, '.');) parts.push_back(part);
+    setNested(root, parts, 0, entry.value);
+  }
+  YAML::Emitter out;
+  out << root;
+  return std::string("# the run's own settings (lk_gap --scenario)\n") + out.c_str() + "\n";
 }
 
 SimConfig benchmarkTruth(const BenchmarkCase& c) {

@@ -35,7 +35,18 @@ struct BenchmarkCase {
   std::vector<std::string> setup;
   double log_rate = 0.0;
   double noise_scale = 1.0;
+  /// A held-out run on another road (empty: none; blocks of the one log are held out): the diagnosis
+  /// gets it as `--holdout` with a scenario of its own (its path, initial state and duration), as a
+  /// user brings runs of different roads.
+  std::string heldout_manoeuvre;
+  std::vector<std::string> heldout_setup;  ///< scenario keys on top of the held-out manoeuvre
 };
+
+/// The held-out run of a case: its manoeuvre, the case's set-up plus heldout_setup, its own noise seed.
+BenchmarkCase heldoutRunOf(const BenchmarkCase& c);
+/// The scenario of a case's run as lk_gap reads it (only the per-run keys: path, initial state,
+/// duration; gap_run.h), as YAML text.
+std::string benchmarkScenarioYaml(const BenchmarkCase& c);
 
 /// The nominal configuration of a manoeuvre (lumped LuGre tires, the paper's vehicle, k_psi = 0.8,
 /// k_y = 0.05 1/m, tau1 = 0.2 s, tau2 = 0.1 ms, p = 1000, an identification multisine on delta_des;
@@ -48,7 +59,8 @@ std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre = 6);
 /// real cars have them (a localisation bias the log records too, a column sensed on the motor side, a
 /// road bank the accelerometer does not sense), other path shapes (a bend, a straight road with initial
 /// offsets up to 3 m), actuator strengths p 500-2000, other tracker gains, 100 Hz and 1 kHz logs, noise
-/// levels +-50 %; 40 no-effect logs over those set-ups; out-of-list effects on the sensors.
+/// levels +-50 %; 40 no-effect logs over those set-ups; out-of-list effects on the sensors; a crosswind
+/// that sets in mid-run; and pairs of runs on different roads (a training and a held-out run).
 std::vector<BenchmarkCase> independentCases();
 /// The cases of a family: "candidates" (benchmarkCases()) or "independent".
 std::vector<BenchmarkCase> familyCases(const std::string& family);

@@ -6,7 +6,8 @@
 //   lk_gap_benchmark ceiling  --dir DIR [--cases SUBSTRING] [--threads N]
 //   lk_gap_benchmark score    --dir DIR
 // `generate` writes DIR/logs/<case>.csv, DIR/nominal/<manoeuvre>.yaml, DIR/cases.json (case id,
-// manoeuvre, log file: no truth) and DIR/truth.json (the hidden effects). `diagnose` reads only
+// manoeuvre, log file, and a held-out run's log and scenario (DIR/scenarios/) where the case has one on
+// another road: no truth) and DIR/truth.json (the hidden effects). `diagnose` reads only
 // cases.json, the logs and the nominal configurations, and writes DIR/reports/<case>/report.json.
 // `ceiling` (after the diagnosis, with the truth) scores each log's truth configuration as the
 // diagnosis scores a candidate and writes DIR/reports/<case>/ceiling.json: the shrink a perfect
@@ -33,6 +34,7 @@
 #include "lane_keeping/common/errors.h"
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/diagnosis.h"
+#include "lane_keeping/gap/gap_run.h"
 #include "lane_keeping/gap/gap_report.h"
 
 using namespace lane_keeping;
@@ -113,6 +115,14 @@ void generate(const std::string& dir, const std::string& family, const std::stri
       benchmarkCaseNominal(c).print(out);
       entry["nominal"] = nominal;
     }
+    if (!c.heldout_manoeuvre.empty()) {  // a held-out run on another road, with its scenario
+      makeDir(dir + "/scenarios");
+      const BenchmarkCase h = heldoutRunOf(c);
+      const std::string heldout_log = "logs/" + h.id + ".csv", scenario = "scenarios/" + h.id + ".yaml";
+      writeCsvLog(dir + "/" + heldout_log, generateBenchmarkLog(h, SensorNoise{}, log_rate));
+      std::ofstream(dir + "/" + scenario) << benchmarkScenarioYaml(h);
+      entry["heldout"] = {{"log", heldout_log}, {"scenario", scenario}};
+    }
     cases.push_back(entry);
     truth.push_back(truthJson(c));
     std::fprintf(stderr, "[generate] %-44s %5zu rows  %.1f s\n", c.id.c_str(), log.size(),
@@ -120,6 +130,20 @@ void generate(const std::string& dir, const std::string& family, const std::stri
   }
   writeJson(dir + "/cases.json", cases);
   writeJson(dir + "/truth.json", truth);
+}
+
+/// The training and held-out runs of a case as lk_gap builds them: the log under the case's nominal and,
+/// where the case has one, the held-out log with its own scenario.
+std::pair<std::vector<GapRun>, std::vector<GapRun>> caseRuns(const std::string& dir, const json& c) {
+  FlatParams nominal;
+  nominal.overlayFile(nominalFile(dir, c));
+  std::vector<GapRun> training, heldout;
+  training.push_back(gapRun(readCsvLog(dir + "/" + c["log"].get<std::string>()), nominal, FlatParams{}, ""));
+  if (c.contains("heldout")) {
+    heldout.push_back(gapRun(readCsvLog(dir + "/" + c["heldout"]["log"].get<std::string>()), nominal,
+                             dir + "/" + c["heldout"]["scenario"].get<std::string>()));
+  }
+  return {std::move(training), std::move(heldout)};
 }
 
 void diagnose(const std::string& dir, const std::string& filter, int threads) {
@@ -130,10 +154,10 @@ void diagnose(const std::string& dir, const std::string& filter, int threads) {
     if (!filter.empty() && id.find(filter) == std::string::npos) continue;
     const auto start = std::chrono::steady_clock::now();
     const SimConfig nominal = loadSimConfig({nominalFile(dir, c)});
-    const GapLog log = readCsvLog(dir + "/" + c["log"].get<std::string>());
+    const auto [training, heldout] = caseRuns(dir, c);
     DiagnosisOptions options;
     options.threads = threads;
-    const GapReport report = diagnoseGap(nominal, {log}, {}, options);
+    const GapReport report = diagnoseGap(nominal, training, heldout, options);
     makeDir(dir + "/reports/" + id);
     writeGapReportJson(dir + "/reports/" + id + "/report.json", report);
     std::fprintf(stderr, "[diagnose] %-44s -> %-20s conf %.2f shrink %5.1f %%  %.1f s\n", id.c_str(),
@@ -145,21 +169,16 @@ void diagnose(const std::string& dir, const std::string& filter, int threads) {
 void ceiling(const std::string& dir, const std::string& filter, int threads) {
   const json truth = readJson(dir + "/truth.json");
   const json cases = readJson(dir + "/cases.json");
-  std::map<std::string, std::string> log_files, nominal_files;
-  for (const auto& c : cases) {
-    log_files[c["id"]] = c["log"];
-    nominal_files[c["id"]] = nominalFile(dir, c);
-  }
+  std::map<std::string, json> case_entries;
+  for (const auto& c : cases) case_entries[c["id"]] = c;
   for (const auto& t : truth) {
     const BenchmarkCase c = caseFromTruth(t);
     if ((!filter.empty() && c.id.find(filter) == std::string::npos) || c.category == "none") continue;
     const auto start = std::chrono::steady_clock::now();
-    const SimConfig nominal = loadSimConfig({nominal_files.at(c.id)});
-    const GapLog log = readCsvLog(dir + "/" + log_files.at(c.id));
+    const auto [training, heldout] = caseRuns(dir, case_entries.at(c.id));
     DiagnosisOptions options;
     options.threads = threads;
-    const std::vector<double> gaps =
-        heldoutGaps(sharedConfigurationRuns(nominal, {log}), {}, {assignmentsChange(c.truth_overlay)}, options);
+    const std::vector<double> gaps = heldoutGaps(training, heldout, {assignmentsChange(c.truth_overlay)}, options);
     const double shrink = gaps[0] > 0.0 ? 1.0 - gaps[1] / gaps[0] : 0.0;
     makeDir(dir + "/reports/" + c.id);
     writeJson(dir + "/reports/" + c.id + "/ceiling.json",

@@ -136,5 +136,34 @@ TEST(SensorModel, RoadBankMovesTheCarLikeWindButTheAccelerometerDoesNotSenseIt) 
   }
 }
 
+TEST(SensorModel, DisturbanceSetsInAtItsOnset) {
+  // A crosswind from x = 60 m: identical to the undisturbed run until the car reaches x = 60 m, then the
+  // force ramps in over 10 m, and the car drifts to the right of the undisturbed one.
+  const RunResult calm = run("sinusoid.yaml", {"simulation.duration=10"});
+  const RunResult windy = run("sinusoid.yaml", {"simulation.duration=10", "disturbance.lateral_force=-500",
+                                                "disturbance.onset_x=60"});
+  ASSERT_EQ(calm.rows.size(), windy.rows.size());
+  const double mass = loadSimConfig({scenario("sinusoid.yaml")}).vehicle.mass;
+  std::size_t before = 0, after = 0;
+  double largest_shift = 0.0;
+  for (std::size_t i = 0; i < calm.rows.size(); ++i) {
+    const LogRow &c = calm.rows[i], &w = windy.rows[i];
+    if (w.state.x < 60.0) {
+      ASSERT_EQ(c.state.y, w.state.y) << "t = " << c.t;
+      ++before;
+    } else if (w.state.x > 70.0 && after++ == 0) {
+      // The first sample past the ramp (~0.6 s after the onset): the force is whole; the tires have begun
+      // to take it (the sideslip it builds), so the extra acceleration lies between 0 and F / m.
+      const double extra = w.state.lateral_acceleration - c.state.lateral_acceleration;
+      EXPECT_LT(extra, -0.2 * 500.0 / mass);
+      EXPECT_GT(extra, -500.0 / mass);
+    }
+    largest_shift = std::min(largest_shift, w.state.y - c.state.y);
+  }
+  EXPECT_GT(before, 10u);
+  EXPECT_GT(after, 10u);
+  EXPECT_LT(largest_shift, -0.01);  // pushed right [m], then the tracker pulls it back
+}
+
 }  // namespace
 }  // namespace lane_keeping
