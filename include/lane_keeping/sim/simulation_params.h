@@ -1,6 +1,7 @@
 #pragma once
 /// Run settings: integration step, duration, initial state, logging, divergence limits.
 #include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "lane_keeping/common/errors.h"
@@ -20,6 +21,9 @@ struct DivergenceLimits {
 };
 
 struct SimulationParams {
+  static constexpr double kMaxLogRows = 2e7;
+  static constexpr double kMaxPlantSteps = 1e10;
+
   std::string name = "default";
   std::string description = "Beregi et al. parameters, lumped LuGre tires, straight lane, 1 m offset";
   double step = 1e-4;        ///< plant RK4 step [s]
@@ -54,9 +58,27 @@ struct SimulationParams {
              "stop as diverged when |delta| exceeds this (eqs 2-5 are singular at pi/2)");
   }
 
+  static std::string gFormat(double value) {
+    char text[32];
+    std::snprintf(text, sizeof text, "%.3g", value);
+    return text;
+  }
+
   void validate(const std::string& prefix, std::vector<ConfigProblem>& problems) const {
     if (step > duration) {
       problems.push_back({prefix + "step", "", "is longer than " + prefix + "duration"});
+    }
+    // Bounds that keep a typo from exhausting memory or running for days (simulation.duration: 1e9 ended
+    // in std::bad_alloc): the log is held in memory (~0.3 kB a row), the plant steps at `step`.
+    if (duration * log_rate > kMaxLogRows) {
+      problems.push_back({prefix + "duration", "",
+                          "x " + prefix + "log_rate = " + gFormat(duration * log_rate) + " log rows; at most " +
+                              gFormat(kMaxLogRows) + " (about 6 GB in memory): shorten the run or lower the rate"});
+    }
+    if (duration / step > kMaxPlantSteps) {
+      problems.push_back({prefix + "duration", "",
+                          "/ " + prefix + "step = " + gFormat(duration / step) + " plant steps; at most " +
+                              gFormat(kMaxPlantSteps) + " (hours of computing): shorten the run or lengthen the step"});
     }
     const double step_ns = step * 1e9;
     if (std::abs(step_ns - 2.0 * std::round(step_ns / 2.0)) > 1e-3) {

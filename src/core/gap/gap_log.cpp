@@ -27,21 +27,30 @@ struct ColumnSpec {
   const char* name;
   bool required;
   std::vector<double> GapLog::*member;
+  /// The largest magnitude a car produces, with its unit: a value beyond it is a units or mapping error
+  /// (or a corrupt file), which the fits would otherwise "explain" with a confident verdict.
+  double limit;
+  const char* unit;
 };
 
+/// A column in units nobody stated (log mapping `unscaled`, e.g. torque in bus counts) is only held to
+/// what any bus encodes.
+constexpr double kUnscaledLimit = 1e9;
+
 const std::vector<ColumnSpec>& columnSpecs() {
+  constexpr double kNone = std::numeric_limits<double>::infinity();
   static const std::vector<ColumnSpec> specs{
-      {"t", true, &GapLog::t},
-      {"x", false, &GapLog::x},
-      {"y", false, &GapLog::y},
-      {"psi", false, &GapLog::psi},
-      {"yaw_rate", false, &GapLog::yaw_rate},
-      {"v", false, &GapLog::v},
-      {"ay", false, &GapLog::ay},
-      {"delta", false, &GapLog::delta},
-      {"delta_rate", false, &GapLog::delta_rate},
-      {"delta_des", false, &GapLog::delta_des},
-      {"torque", false, &GapLog::torque},
+      {"t", true, &GapLog::t, kNone, "s"},
+      {"x", false, &GapLog::x, 1e8, "m"},            // a map frame spanning a continent
+      {"y", false, &GapLog::y, 1e8, "m"},
+      {"psi", false, &GapLog::psi, 1e5, "rad"},      // unwrapped over a day of driving
+      {"yaw_rate", false, &GapLog::yaw_rate, 10.0, "rad/s"},  // a spin is 2-3 rad/s
+      {"v", false, &GapLog::v, 150.0, "m/s"},
+      {"ay", false, &GapLog::ay, 100.0, "m/s^2"},   // 10 g: a crash, not driving
+      {"delta", false, &GapLog::delta, 1.6, "rad"},  // the road-wheel angle; pi/2 is the model's singularity
+      {"delta_rate", false, &GapLog::delta_rate, 50.0, "rad/s"},
+      {"delta_des", false, &GapLog::delta_des, 1.6, "rad"},
+      {"torque", false, &GapLog::torque, 1e5, "N m"},  // steering torques are tens to thousands of N m
   };
   return specs;
 }
@@ -283,6 +292,24 @@ GapLog readCsvLog(const std::string& path, const LogMapping& mapping) {
     }
     last_t = t;
     last_line = r.line;
+  }
+
+  // Values no car produces: a wrong unit or scale (a steering-wheel angle in degrees, torque in counts
+  // read as N m) or a corrupt file. Fatal, naming the line: the diagnosis would fit them.
+  for (std::size_t p = 0; p < present.size(); ++p) {
+    if (!use[p]) continue;
+    const ColumnSpec& spec = specs[present[p]];
+    const bool unscaled = log.unscaled.count(spec.name) > 0;
+    const double limit = unscaled ? kUnscaledLimit : spec.limit;
+    for (const RawRow& r : rows) {
+      const double v = r.values[p];
+      if (std::isfinite(v) && std::fabs(v) > limit) {
+        throw InputError(path + ":" + std::to_string(r.line) + ": column '" + spec.name + "' holds " + formatDouble(v) +
+                         ", beyond what a car produces (|" + spec.name + "| <= " + formatDouble(limit) + " " +
+                         (unscaled ? "in any unit" : spec.unit) +
+                         "); check the column's unit, or its scale in the log mapping");
+      }
+    }
   }
 
   // Keep the rows whose used cells are all finite.

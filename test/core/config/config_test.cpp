@@ -117,6 +117,12 @@ TEST(ConfigErrors, CrossFieldRules) {
                 .find("RK4's stability limit"),
             std::string::npos);
   EXPECT_NE(errorOf({}, {"simulation.step=1.5e-9"}).find("even number of nanoseconds"), std::string::npos);
+  // A run whose log or step count no machine holds is refused up front (was std::bad_alloc).
+  EXPECT_NE(errorOf({}, {"simulation.duration=1e9"}).find("simulation.duration / simulation.step = 1e+13 plant steps"),
+            std::string::npos);
+  EXPECT_NE(errorOf({}, {"simulation.log_rate=1e9"}).find("x simulation.log_rate = 1e+10 log rows; at most 2e+07"),
+            std::string::npos);
+  EXPECT_EQ(errorOf({}, {"simulation.duration=20000", "simulation.log_rate=1000"}), "");  // 2e7 rows: allowed
 }
 
 TEST(ConfigErrors, SimulateExitsWithStatus2AndTheMessage) {

@@ -23,14 +23,15 @@ std::string writeTemp(const std::string& name, const std::string& text) {
   return path;
 }
 
-/// n rows of a valid log in the column order of `header`; row i has t = 0.01 i and col k = k + i.
+/// n rows of a valid log in the column order of `header`; row i has t = 0.01 i and col k = 0.01 (k + i)
+/// (small enough for every column's plausibility limit).
 std::string rowsText(const std::vector<std::string>& header, int n, int first = 0, const std::string& eol = "\n") {
   std::ostringstream out;
   for (int i = first; i < first + n; ++i) {
     for (std::size_t k = 0; k < header.size(); ++k) {
       if (k) out << ",";
       if (header[k] == "t") out << 0.01 * i;
-      else out << (static_cast<double>(k) + i);
+      else out << 0.01 * (static_cast<double>(k) + i);
     }
     out << eol;
   }
@@ -67,12 +68,12 @@ TEST(GapLogRead, RequiredColumnsInAnyOrderExtraColumnsIgnored) {
   EXPECT_FALSE(log.hasSpeed());
   EXPECT_FALSE(log.hasLateralAcceleration());
   EXPECT_FALSE(log.hasSteeringRate());
-  // Column k holds k + i: torque is column 0, delta_des 2, psi 4, x 6, yaw_rate 8.
-  EXPECT_DOUBLE_EQ(log.torque[3], 3.0);
-  EXPECT_DOUBLE_EQ(log.delta_des[3], 5.0);
-  EXPECT_DOUBLE_EQ(log.psi[3], 7.0);
-  EXPECT_DOUBLE_EQ(log.x[3], 9.0);
-  EXPECT_DOUBLE_EQ(log.yaw_rate[3], 11.0);
+  // Column k holds 0.01 (k + i): torque is column 0, delta_des 2, psi 4, x 6, yaw_rate 8.
+  EXPECT_DOUBLE_EQ(log.torque[3], 0.03);
+  EXPECT_DOUBLE_EQ(log.delta_des[3], 0.05);
+  EXPECT_DOUBLE_EQ(log.psi[3], 0.07);
+  EXPECT_DOUBLE_EQ(log.x[3], 0.09);
+  EXPECT_DOUBLE_EQ(log.yaw_rate[3], 0.11);
   EXPECT_DOUBLE_EQ(log.t[3], 0.03);
   EXPECT_NEAR(log.medianStep(), 0.01, 1e-12);
   EXPECT_NEAR(log.duration(), 0.19, 1e-12);
@@ -86,15 +87,15 @@ TEST(GapLogRead, OptionalColumnsRead) {
   ASSERT_TRUE(log.hasLateralAcceleration());
   ASSERT_TRUE(log.hasSteeringRate());
   EXPECT_EQ(log.v.size(), 12u);
-  EXPECT_DOUBLE_EQ(log.v[1], 9.0);
-  EXPECT_DOUBLE_EQ(log.ay[1], 10.0);
-  EXPECT_DOUBLE_EQ(log.delta_rate[1], 11.0);
+  EXPECT_DOUBLE_EQ(log.v[1], 0.09);
+  EXPECT_DOUBLE_EQ(log.ay[1], 0.1);
+  EXPECT_DOUBLE_EQ(log.delta_rate[1], 0.11);
 }
 
 TEST(GapLogRead, CrlfWhitespaceAndBlankLines) {
   std::string text = " t , x ,y,psi,yaw_rate,delta,delta_des,torque \r\n";
   for (int i = 0; i < 15; ++i) {
-    text += "  " + std::to_string(0.1 * i) + " ,1, 2 ,3,4,5,6, 7\r\n";
+    text += "  " + std::to_string(0.1 * i) + " ,1, 2 ,3,4,0.5,0.6, 7\r\n";
     if (i == 4) text += "\r\n";
   }
   const GapLog log = readCsvLog(writeTemp("gl_crlf.csv", text));
@@ -108,10 +109,10 @@ TEST(GapLogRead, NanInfAndEmptyCellsSkipRowsAndAreCounted) {
   std::vector<std::string> header = kRequired;
   header.push_back("v");
   std::string text = headerText(header) + rowsText(header, 5);                   // lines 2-6
-  text += "0.05,1,2,3,nan,5,6,7,8\n";                                             // line 7: NaN yaw_rate
-  text += "0.06,1,2,3,4,5,6,inf,8\n";                                             // line 8: Inf torque
-  text += "0.07,1,2,3,4,5,,7,8\n";                                                // line 9: empty delta_des
-  text += "0.08,1,2,3,4,5,6,7,NaN\n";                                             // line 10: NaN optional v
+  text += "0.05,1,2,3,nan,0.5,0.6,7,8\n";                                             // line 7: NaN yaw_rate
+  text += "0.06,1,2,3,4,0.5,0.6,inf,8\n";                                             // line 8: Inf torque
+  text += "0.07,1,2,3,4,0.5,,7,8\n";                                                // line 9: empty delta_des
+  text += "0.08,1,2,3,4,0.5,0.6,7,NaN\n";                                             // line 10: NaN optional v
   text += rowsText(header, 10, 9);                                                // lines 11-20
   const std::string path = writeTemp("gl_nan.csv", text);
   const GapLog log = readCsvLog(path);
@@ -128,11 +129,27 @@ TEST(GapLogRead, NanInfAndEmptyCellsSkipRowsAndAreCounted) {
   EXPECT_TRUE(has(note, "yaw_rate 1")) << note;
 }
 
+TEST(GapLogRead, AValueNoCarProducesIsAnErrorNamingLineColumnAndLimit) {
+  // 20 rows whose torque holds 1e308 on line 12: a units error, not data to fit (lk_gap used to return
+  // torque_limit removing 100 % of a gap of 1.2e9).
+  std::string text = headerText(kRequired) + rowsText(kRequired, 10);  // lines 2-11
+  text += "0.1,1,2,3,0.5,0.1,0.1,1e308\n";                             // line 12
+  text += rowsText(kRequired, 9, 11);
+  const std::string error = errorOf(writeTemp("gl_huge.csv", text));
+  EXPECT_TRUE(has(error, "gl_huge.csv:12: column 'torque' holds 1e+308")) << error;
+  EXPECT_TRUE(has(error, "|torque| <= 100000 N m")) << error;
+  // The limits sit beyond driving, not at it: a steering-wheel angle of 1.5 rad passes as delta.
+  std::string ok = headerText(kRequired) + rowsText(kRequired, 10);
+  ok += "0.1,1,2,3,0.5,1.5,0.1,50\n";
+  ok += rowsText(kRequired, 9, 11);
+  EXPECT_EQ(readCsvLog(writeTemp("gl_ok.csv", ok)).size(), 20u);
+}
+
 TEST(GapLogRead, OptionalColumnWithoutAnyValueIsTreatedAsAbsent) {
   std::vector<std::string> header = kRequired;
   header.push_back("ay");
   std::string text = headerText(header);
-  for (int i = 0; i < 12; ++i) text += std::to_string(0.01 * i) + ",1,2,3,4,5,6,7,\n";
+  for (int i = 0; i < 12; ++i) text += std::to_string(0.01 * i) + ",1,2,3,4,0.5,0.6,7,\n";
   const GapLog log = readCsvLog(writeTemp("gl_empty_ay.csv", text));
   EXPECT_EQ(log.size(), 12u);
   EXPECT_EQ(log.rows_skipped, 0u);
@@ -179,7 +196,7 @@ TEST(GapLogErrors, MissingTimeColumnListedWithTheColumnsFound) {
 
 TEST(GapLogErrors, UnparsableCellNamesFileLineColumnAndText) {
   std::string text = headerText(kRequired) + rowsText(kRequired, 5);
-  text += "0.05,1,2,3,4,5,6,7x\n";  // line 7, torque (column 8)
+  text += "0.05,1,2,3,4,0.5,0.6,7x\n";  // line 7, torque (column 8)
   text += rowsText(kRequired, 10, 6);
   const std::string path = writeTemp("gl_parse.csv", text);
   const std::string error = errorOf(path);
@@ -190,7 +207,7 @@ TEST(GapLogErrors, UnparsableCellNamesFileLineColumnAndText) {
 
 TEST(GapLogErrors, NonIncreasingTimeNamesFileLineAndBothValues) {
   std::string text = headerText(kRequired) + rowsText(kRequired, 5);  // t = 0 .. 0.04 on lines 2-6
-  text += "0.04,1,2,3,4,5,6,7\n";                                       // line 7 repeats t = 0.04
+  text += "0.04,1,2,3,4,0.5,0.6,7\n";                                       // line 7 repeats t = 0.04
   text += rowsText(kRequired, 10, 6);
   const std::string path = writeTemp("gl_time.csv", text);
   const std::string error = errorOf(path);
@@ -199,7 +216,7 @@ TEST(GapLogErrors, NonIncreasingTimeNamesFileLineAndBothValues) {
   EXPECT_TRUE(has(error, "t = 0.040000000000000001 follows t = 0.040000000000000001 (line 6)")) << error;
 
   std::string backwards = headerText(kRequired) + rowsText(kRequired, 12);
-  backwards += "0.05,1,2,3,4,5,6,7\n";  // line 14, after t = 0.11
+  backwards += "0.05,1,2,3,4,0.5,0.6,7\n";  // line 14, after t = 0.11
   const std::string path2 = writeTemp("gl_time2.csv", backwards);
   const std::string error2 = errorOf(path2);
   EXPECT_TRUE(has(error2, path2 + ":14:")) << error2;
@@ -208,7 +225,7 @@ TEST(GapLogErrors, NonIncreasingTimeNamesFileLineAndBothValues) {
 
 TEST(GapLogErrors, TooFewValidRows) {
   std::string text = headerText(kRequired) + rowsText(kRequired, 8);
-  text += "0.08,nan,2,3,4,5,6,7\n0.09,1,2,3,4,5,6,nan\n";
+  text += "0.08,nan,2,3,4,0.5,0.6,7\n0.09,1,2,3,4,0.5,0.6,nan\n";
   const std::string path = writeTemp("gl_few.csv", text);
   const std::string error = errorOf(path);
   EXPECT_TRUE(has(error, path + ": only 8 valid data rows (10 read, 2 skipped")) << error;
