@@ -32,6 +32,9 @@ struct DiagnosisOptions {
   double upstream_share = 0.2;      ///< chassis excess (relative to steering) that makes the chassis the "where"
   int threads = 2;                  ///< candidates fitted in parallel
   bool closed_loop = true;          ///< run the closed-loop replays of "how far"
+  /// A single run whose gap sets in mid-run (GapWhere::onset) and that no candidate explains over the
+  /// whole log is diagnosed again on the part from the onset on (gap_onset.h).
+  bool from_onset = true;
   std::vector<std::string> effects; ///< restrict the candidates (empty: all)
   std::function<void(const std::string&)> progress;  ///< progress messages (may be empty)
 };

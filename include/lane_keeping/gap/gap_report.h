@@ -1,6 +1,7 @@
 #pragma once
 /// The diagnosis result: where the gap lies, which effect causes it, how far it shrinks.
 /// report.json carries the fields of DESIGN §5 (an interface outside checks rely on) and more.
+#include <limits>
 #include <map>
 #include <string>
 #include <vector>
@@ -39,6 +40,10 @@ struct GapWhere {
   std::string subsystem;  ///< the subsystem that carries the gap
   std::vector<SubsystemGap> subsystems;
   std::vector<WindowShare> windows;  ///< the time windows carrying most of the gap, largest first
+  /// [s] where one run's gap sets in mid-run: the start of the first time window by which 5 % of its
+  /// excess has accrued, when that lies at least a quarter into the run (before it, the nominal matches
+  /// the log); NaN when the gap is there from the start or the data hold several runs.
+  double onset = std::numeric_limits<double>::quiet_NaN();
   std::vector<BandShare> bands;      ///< all bands, low to high frequency
   std::vector<RegimeShare> regimes;
 };

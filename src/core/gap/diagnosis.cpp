@@ -14,6 +14,7 @@
 #include "lane_keeping/gap/candidate_forms.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/evaluation.h"
+#include "lane_keeping/gap/gap_onset.h"
 #include "lane_keeping/gap/how_far.h"
 #include "lane_keeping/gap/noise_null.h"
 #include "lane_keeping/gap/partial_explanation.h"
@@ -211,6 +212,12 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   }
   howFar(winner, nominal_held, heldout.empty() ? train_runs : held_runs, how_far_options, &report, artifacts);
   if (options.closed_loop) report.wall_seconds.emplace_back("how_far", secondsSince(how_far_start));
+
+  // ---- 5. A gap that sets in mid-run, unexplained over the whole log: again from its onset (gap_onset.h)
+  if (diagnoseFromOnsetApplies(report, training, heldout, options)) {
+    say("the gap sets in mid-run: diagnosing again from its onset");
+    return diagnoseFromOnset(nominal, training, std::move(report), options, artifacts);
+  }
   say("done");
   return report;
 }

@@ -8,7 +8,7 @@
 //     "detection": { "draws", "false_alarm_rate", "heldout": {"value", "p_value", "null_median", "null_max",
 //                    "detected"}, "training": {..} },
 //     "where":   { "subsystem", "subsystems": [{"name", "nrmse", "noise_floor", "outputs": [..]}],
-//                  "windows": [{"log", "t0", "t1", "share"}], "bands": [{"f0", "f1", "share"}],
+//                  "windows": [{"log", "t0", "t1", "share"}], "onset" (optional), "bands": [{"f0", "f1", "share"}],
 //                  "regimes": [{"variable", "lo", "hi", "share", "time_share"}] },
 //     "ranking": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {"key": "value"},
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
@@ -64,6 +64,7 @@ OrderedJson toJson(const GapWhere& w) {
   out["windows"] = OrderedJson::array();
   for (const WindowShare& s : w.windows)
     out["windows"].push_back({{"log", s.log}, {"t0", number(s.t0)}, {"t1", number(s.t1)}, {"share", number(s.share)}});
+  if (std::isfinite(w.onset)) out["onset"] = w.onset;
   out["bands"] = OrderedJson::array();
   for (const BandShare& s : w.bands)
     out["bands"].push_back({{"f0", number(s.f0)}, {"f1", number(s.f1)}, {"share", number(s.share)}});
@@ -371,6 +372,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "share", &s.share, true);
     rep.where.windows.push_back(s);
   });
+  r.get(w, wp, "onset", &rep.where.onset);
   r.forEach(w, wp, "bands", true, [&](const Json& e, const std::string& p) {
     BandShare s;
     r.get(e, p, "f0", &s.f0, true);

@@ -34,6 +34,24 @@ void excessEnergy(const SubsystemReplay& replay, const SubsystemScore& score, co
   }
 }
 
+/// The start of the first window by which kOnsetShare of the excess energy has accrued, if that lies at
+/// least kOnsetFraction into the run (a gap that sets in mid-run: a crosswind past a cutting, a fault);
+/// NaN otherwise. A gap present from the start accrues ~1/bins per window and never qualifies.
+constexpr double kOnsetShare = 0.05, kOnsetFraction = 0.25;
+double gapOnset(const std::vector<double>& energy, double t_min, double width) {
+  double total = 0.0;
+  for (double e : energy) total += e;
+  if (!(total > 0.0) || energy.size() < 8) return std::numeric_limits<double>::quiet_NaN();
+  double accrued = 0.0;
+  for (std::size_t b = 0; b < energy.size(); ++b) {
+    accrued += energy[b];
+    if (accrued > kOnsetShare * total) {
+      return b >= kOnsetFraction * energy.size() ? t_min + b * width : std::numeric_limits<double>::quiet_NaN();
+    }
+  }
+  return std::numeric_limits<double>::quiet_NaN();
+}
+
 /// Welch power spectral density of a uniformly resampled series (Hann windows, 50 % overlap).
 void welch(const std::vector<double>& x, double dt, std::vector<double>* f, std::vector<double>* psd) {
   const std::size_t n = x.size();
@@ -172,6 +190,7 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, d
       for (int b = 0; b < bins; ++b) {
         windows.push_back({log->log().source, t_min + b * width, t_min + (b + 1) * width, energy[b] / total});
       }
+      if (span.size() == 1) where.onset = gapOnset(energy, t_min, width);
     }
     std::stable_sort(windows.begin(), windows.end(), [](const auto& a, const auto& b) { return a.share > b.share; });
     windows.resize(std::min<std::size_t>(5, windows.size()));
