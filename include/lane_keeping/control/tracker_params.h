@@ -20,6 +20,10 @@ struct TrackerParams {
   double excitation_max_frequency = 15.0;  ///< [Hz]
   int excitation_components = 12;         ///< sines, log-spaced in frequency
   int excitation_seed = 1;                ///< seed of the random phases
+  /// [s] Not a configuration key (set by code): the excitation runs on t + offset. A simulation that
+  /// starts at a log's time t0 rather than 0 (the gap diagnosis' noise reference and closed-loop replays of
+  /// a log cut mid-run) sets it to t0, so that it meets the test signal at the phase the log recorded.
+  double excitation_clock_offset = 0.0;
 
   void visit(ParamVisitor& v, const std::string& prefix) {
     v.number(prefix + "k_psi", k_psi, "", Range::any(), "k_psi, heading-error gain (Beregi eq 11)");

@@ -36,7 +36,7 @@ SteeringCommand PathTracker::excitation(double t) const {
 SteeringCommand PathTracker::command(const PoseSample& pose, double t, PathErrors* errors) const {
   SteeringCommand c = command(pose, errors);
   if (!excitation_frequency_.empty()) {
-    const SteeringCommand e = excitation(t);
+    const SteeringCommand e = excitation(t + params_.excitation_clock_offset);
     c.delta_des += e.delta_des;
     c.delta_des_rate += e.delta_des_rate;
   }

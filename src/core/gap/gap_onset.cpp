@@ -42,9 +42,6 @@ GapReport diagnoseFromOnset(const SimConfig& nominal, const std::vector<GapRun>&
   const double onset = whole.where.onset;
   DiagnosisOptions again = options;
   again.from_onset = false;
-  // The closed loop restarted mid-log would meet the tracker's identification signal at another phase
-  // (it is a function of the time since the start): "how far" stays with the subsystem replays.
-  again.closed_loop = false;
   GapReport part = diagnoseGap(nominal, {runFromOnset(training[0], onset)}, {}, again, artifacts);
   const std::string sets_in = "the gap sets in at t = " + seconds(onset) + " (before it the nominal model matches the "
                               "log within noise)";
@@ -55,8 +52,7 @@ GapReport diagnoseFromOnset(const SimConfig& nominal, const std::vector<GapRun>&
   }
   part.verdict.reason = sets_in + "; over the whole log no candidate explains it (" + whole.verdict.reason +
                         "); on the log from t = " + seconds(onset - kOnsetLeadIn) + ": " + part.verdict.reason;
-  part.notes.insert(part.notes.begin(), sets_in + ": diagnosed on the log from t = " + seconds(onset - kOnsetLeadIn) +
-                                            "; how far: subsystem replays only (no closed loop restarted mid-log)");
+  part.notes.insert(part.notes.begin(), sets_in + ": diagnosed on the log from t = " + seconds(onset - kOnsetLeadIn));
   part.where.onset = onset;
   std::vector<std::pair<std::string, double>> stages;
   for (const auto& [stage, secs] : whole.wall_seconds) stages.emplace_back("whole log: " + stage, secs);

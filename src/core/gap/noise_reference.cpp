@@ -46,6 +46,7 @@ GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsign
   const double step = log.log().medianStep();
   c.simulation.log_rate = 1.0 / step;
   c.simulation.duration = log.end() - log.start() + step;
+  c.tracker.excitation_clock_offset = log.start();  // its times are shifted to the log's below
   const RunResult run = ClosedLoop(c).run();
   if (run.diverged()) {
     throw LaneKeepingError("noise reference for " + log.log().source + ": the nominal closed loop " + run.message);
