@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages lane_keeping needs (ROS 1 from Debian, Eigen, yaml-cpp, Ceres,
-# GoogleTest, matplotlib, Xvfb). Does nothing when everything is already installed.
+# GoogleTest, matplotlib, Xvfb, Dask and pytest for lk_fleet). Does nothing when everything is already installed.
 set -euo pipefail
 
 PACKAGES=(
@@ -10,6 +10,7 @@ PACKAGES=(
   librosbag-dev python3-rosbag libnodeletlib-dev libnodeletlib-tools pluginlib-dev rviz
   libeigen3-dev libyaml-cpp-dev libceres-dev libgtest-dev nlohmann-json3-dev python3-matplotlib python3-numpy
   xvfb xauth imagemagick
+  python3-distributed python3-dask python3-pytest python3-yaml
 )
 
 missing=()
