@@ -1,8 +1,16 @@
 #!/usr/bin/env bash
 # Builds lane_keeping in a catkin workspace outside the source tree:
 #   build/ws/src/lane_keeping -> the repository (the repo root is the package).
-# Usage: scripts/build.sh [extra catkin_make arguments, e.g. tests]
+# Usage: scripts/build.sh [--sanitize] [extra catkin_make arguments, e.g. tests]
+#   --sanitize: AddressSanitizer + UndefinedBehaviorSanitizer (any report aborts), with debug info, in
+#   its own workspace build-sanitize/ws (scripts/run_sanitized_tests.sh runs the gtests in it).
 set -euo pipefail
+SANITIZE=0
+if [ "${1:-}" = "--sanitize" ]; then
+  SANITIZE=1
+  shift
+  export LK_BUILD_ROOT="${LK_BUILD_ROOT:-$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)/build-sanitize}"
+fi
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 "$REPO_ROOT/scripts/install_deps.sh"
 # The package folder holds a symlink to each top-level entry of the repository except build
@@ -25,10 +33,18 @@ cd "$WS"
 # generated Python messages would be missing from the rostests' PYTHONPATH. Create them first.
 mkdir -p "$WS/devel/lib/python3/dist-packages" "$WS/devel/lib/pkgconfig"
 JOBS="${LK_JOBS:-$(nproc)}"
+CMAKE_ARGS=(-DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3)
+if [ "$SANITIZE" = 1 ]; then
+  SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+  CMAKE_ARGS=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DPYTHON_EXECUTABLE=/usr/bin/python3 "-DCMAKE_CXX_FLAGS=$SAN"
+              "-DCMAKE_EXE_LINKER_FLAGS=$SAN" "-DCMAKE_SHARED_LINKER_FLAGS=$SAN")
+fi
 # Always build every target first (tools must not go stale against a rebuilt library), then any
 # extra targets asked for (e.g. tests).
-{ catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$JOBS" &&
-  { [ $# -eq 0 ] || catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$JOBS" "$@"; }
+# (The sanitizer variant builds only the targets asked for, when any are: it is slow, and only tests run in it.)
+if [ "$SANITIZE" = 1 ] && [ $# -gt 0 ]; then FIRST=("$@"); else FIRST=(); fi
+{ catkin_make "${CMAKE_ARGS[@]}" -j"$JOBS" "${FIRST[@]}" &&
+  { [ $# -eq 0 ] || [ ${#FIRST[@]} -gt 0 ] || catkin_make "${CMAKE_ARGS[@]}" -j"$JOBS" "$@"; }
 } >"$BUILD_ROOT/catkin_make.log" 2>&1 || {
   tail -n 60 "$BUILD_ROOT/catkin_make.log"
   echo "[build] catkin_make failed; full log: $BUILD_ROOT/catkin_make.log" >&2
