@@ -15,7 +15,6 @@ lists it as failed), 1 a task Dask gave up on (its workers kept dying), 2 bad ar
 """
 import argparse
 import csv
-import ctypes
 import fnmatch
 import glob
 import hashlib
@@ -28,7 +27,6 @@ import os
 import re
 import shlex
 import shutil
-import signal
 import socket
 import subprocess
 import sys
@@ -115,6 +113,19 @@ def result_path(out, tid):
     return os.path.join(out, "results", tid + ".json")
 
 
+def store_result(out, result):
+    """Store a task's result, unless it would replace a good one with a failure: a second attempt of a
+    task (a worker thought dead that was not) must not undo the first's verdict."""
+    path = result_path(out, result["task_id"])
+    if result["status"] != "ok" and load_result(out, result["task_id"]) is not None:
+        with open(path) as f:
+            stored = json.load(f)
+        if stored["status"] == "ok":
+            return stored
+    write_json_atomic(path, result)
+    return result
+
+
 def load_result(out, tid):
     """The stored result of a task, or None when it must (re)run: absent, unreadable, or an
     infrastructure error (status 'error', e.g. a task whose workers kept dying) rather than a verdict or
@@ -133,11 +144,13 @@ def load_result(out, tid):
 # Running one tool (on a worker)
 
 
-def _die_with_parent():
-    """preexec_fn: the tool gets SIGKILL when the worker thread that launched it dies, so a SIGKILLed
-    worker leaves no orphan computing a task that Dask has already given to another worker."""
-    PR_SET_PDEATHSIG = 1
-    ctypes.CDLL("libc.so.6", use_errno=True).prctl(PR_SET_PDEATHSIG, signal.SIGKILL)
+def die_with_worker(argv):
+    """The command, run so that it gets SIGKILL when the worker that launched it dies: a SIGKILLed worker
+    must leave no orphan computing a task that Dask has already given to another worker. util-linux's
+    setpriv sets the parent-death signal and execs the tool (+10 ms a task here); a preexec_fn calling
+    prctl would do the same but forces fork() of the whole worker instead of vfork() (+50 ms a task)."""
+    setpriv = shutil.which("setpriv")
+    return [setpriv, "--pdeathsig", "KILL", "--"] + argv if setpriv else argv
 
 
 def tail(text, lines=STDERR_TAIL_LINES, chars=STDERR_TAIL_CHARS):
@@ -149,8 +162,8 @@ def run_tool(argv, timeout):
     a signal raises ToolKilled: that is the machine's doing, not the input's, and worth a retry."""
     start = time.monotonic()
     try:
-        proc = subprocess.run(argv, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                              errors="replace", timeout=timeout, preexec_fn=_die_with_parent)
+        proc = subprocess.run(die_with_worker(argv), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                              errors="replace", timeout=timeout)
     except subprocess.TimeoutExpired as exc:
         stderr = exc.stderr.decode(errors="replace") if isinstance(exc.stderr, bytes) else (exc.stderr or "")
         return None, "", stderr + f"\nlk_fleet: timed out after {timeout} s", time.monotonic() - start
@@ -248,8 +261,7 @@ def gap_task(spec):
                           error=f"lk_gap exited 0 but its report.json is unreadable: {exc}")
     if result["status"] != "ok":
         shutil.rmtree(attempt, ignore_errors=True)
-    write_json_atomic(result_path(out, tid), result)
-    return result
+    return store_result(out, result)
 
 
 def expand_logs(patterns):
@@ -388,8 +400,7 @@ def sweep_task(spec):
                         write_bytes_atomic(os.path.join(out, "runs", tid + ".csv"), f.read())
             except (OSError, ValueError) as exc:
                 result.update(status="failed", error_kind="unreadable log", error=f"cannot summarise the log: {exc}")
-    write_json_atomic(result_path(out, tid), result)
-    return result
+    return store_result(out, result)
 
 
 def parse_grid(text):
@@ -609,8 +620,16 @@ def collect(future, spec):
         exc = future.exception() if future.status == "error" else RuntimeError(f"task {future.status}")
         result = error_result(spec, exc)
     if result["status"] == "error" or not os.path.exists(result_path(spec["out"], spec["task_id"])):
-        write_json_atomic(result_path(spec["out"], spec["task_id"]), result)
+        result = store_result(spec["out"], result)
     return result
+
+
+def remove_stale_attempts(out, tids):
+    """Report folders of attempts whose worker died mid-task (.<task-id>.<random>). Removed by the client
+    once every task has finished, when no attempt of these tasks can still be writing."""
+    for tid in tids:
+        for folder in glob.glob(os.path.join(out, "reports", f".{tid}.*")):
+            shutil.rmtree(folder, ignore_errors=True)
 
 
 def running_count(client, keys):
@@ -695,6 +714,7 @@ def execute(args, fn, specs):
     results = dict(skipped)
     if todo:
         results.update(run_tasks(args, fn, todo, skipped, len(unique)))
+        remove_stale_attempts(args.out, [spec["task_id"] for spec in todo])
     return [results[spec["task_id"]] for spec in unique], len(skipped), len(todo)
 
 
@@ -761,7 +781,7 @@ def plot_parameters(out, values):
         ax.plot(xs, np.zeros(len(xs)), "|", color="black", markersize=12)  # each log, under the bars
         ax.set_xlabel(label)
         ax.set_ylabel("logs")
-        ax.set_title(f"{label}: {len(xs)} logs, median {np.median(xs):.4g}")
+        ax.set_title(f"{label}: {len(xs)} log{'s' if len(xs) > 1 else ''}, median {np.median(xs):.4g}")
         fig.tight_layout()
         filename = os.path.join("plots", re.sub(r"[^\w.-]+", "_", label) + ".png")
         fig.savefig(os.path.join(out, filename), dpi=110)
@@ -870,8 +890,9 @@ def plot_sweep(path, rows, axes, laws, metric):
         ok.sort(key=lambda r: r[key])
         ax.plot([r[key] for r in ok], [r[metric] for r in ok], "o-", color="#4878a8", label=metric)
         unbounded = [r for r in ok if not r["bounded"]]
-        ax.plot([r[key] for r in unbounded], [r[metric] for r in unbounded], "x", color="red",
-                markersize=10, label="diverged / not finite")
+        if unbounded:
+            ax.plot([r[key] for r in unbounded], [r[metric] for r in unbounded], "x", color="red",
+                    markersize=10, label="diverged / not finite (where the run stopped)")
         ax.set_xlabel(axis_label(key))
         ax.set_ylabel(metric)
         ax.legend()
