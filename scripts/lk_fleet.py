@@ -543,13 +543,14 @@ class Progress:
     """Done / running / failed counts, rate and time left, on stderr: a redrawn bar on a terminal, a plain
     line every `interval` seconds otherwise (CI logs, files)."""
 
-    def __init__(self, total, skipped, stream=sys.stderr, interval=10.0):
+    def __init__(self, total, skipped, stream=sys.stderr, interval=5.0):
         self.total, self.skipped, self.stream = total, skipped, stream
         self.tty = stream.isatty()
         self.interval = 0.5 if self.tty else interval
         self.start = time.monotonic()
         self.last = -math.inf
         self.width = 0
+        self.shown = ""
 
     def line(self, done, failed, running):
         ran = done - self.skipped
@@ -570,6 +571,9 @@ class Progress:
             return
         self.last = now
         text = self.line(done, failed, running())
+        if text == self.shown:
+            return
+        self.shown = text
         if self.tty:
             self.stream.write("\r" + text.ljust(self.width))
             self.width = len(text)
@@ -584,7 +588,7 @@ class Progress:
             self.width = 0
         self.stream.write(text + "\n")
         self.stream.flush()
-        self.last = -math.inf
+        self.last, self.shown = -math.inf, ""
 
     def finish(self, done, failed):
         self.update(done, failed, lambda: 0, force=True)
@@ -702,7 +706,7 @@ def execute(args, fn, specs):
     skipped = {}
     for spec in unique:
         stored = load_result(args.out, spec["task_id"])
-        if stored is not None:
+        if stored is not None and not (args.retry_failed and stored["status"] == "failed"):
             skipped[spec["task_id"]] = stored
     todo = [spec for spec in unique if spec["task_id"] not in skipped]
     # Longest first: a big log started last would set the run's tail alone.
@@ -981,7 +985,9 @@ def build_parser():
     common.add_argument("--retries", type=int, default=2,
                         help="reruns of a task whose worker or tool died (default 2)")
     common.add_argument("--task-timeout", type=float, default=None, help="seconds before a task is failed")
-    common.add_argument("--progress-interval", type=float, default=10.0,
+    common.add_argument("--retry-failed", action="store_true",
+                        help="run again the tasks whose tool failed before (a fixed log, a fixed tool)")
+    common.add_argument("--progress-interval", type=float, default=5.0,
                         help="seconds between progress lines when stdout is not a terminal")
     common.add_argument("--connect-timeout", type=float, default=10.0,
                         help="seconds to wait for the --scheduler (default 10)")

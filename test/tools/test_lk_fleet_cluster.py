@@ -51,6 +51,10 @@ def read_csv(path):
         return list(csv.DictReader(f))
 
 
+def verdicts(rows):
+    return [(r["task_id"], r["status"], r["effect"], r["error"]) for r in rows]
+
+
 def result_files(out):
     return sorted(glob.glob(os.path.join(out, "results", "*.json")))
 
@@ -143,6 +147,12 @@ def test_local_cluster_diagnoses_each_log_once_and_reports_the_bad_one(logs, tmp
     for plot in ("steering_friction.coulomb", "steering_friction.viscous", "sensing_delay.extra_delay"):
         with open(os.path.join(out, "plots", plot + ".png"), "rb") as f:
             assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+    # --retry-failed runs the failed log again (and only it): a fixed file would now be diagnosed.
+    again = fleet("gap", "--config", CONFIG, "--logs", os.path.join(logs, "**", "*.csv"), "--out", out,
+                  "--workers", "1", "--lk-bin", BIN, "--extra-args", EFFECTS, "--retry-failed")
+    assert again.returncode == 0, again.stderr
+    assert "5 tasks: 1 to diagnose, 4 done before (skipped)" in again.stderr
+    assert verdicts(read_csv(os.path.join(out, "fleet.csv"))) == verdicts(rows)
 
 
 @pytest.fixture
