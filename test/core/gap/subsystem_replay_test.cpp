@@ -7,6 +7,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <Eigen/Dense>
+
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/gap_metrics.h"
 #include "lane_keeping/gap/log_signals.h"
@@ -178,6 +180,49 @@ TEST(LogSignals, SplineDerivativeKeepsTheRateOfA12HzSineAt100Hz) {
   double worst_quadratic = 0.0;
   for (int i = 20; i <= 180; ++i) worst_quadratic = std::max(worst_quadratic, std::fabs(quadratic[i] - w * std::cos(w * t[i])));
   EXPECT_GT(worst_quadratic, 0.2 * w);
+}
+
+/// The local quadratic least-squares fit at sample i over [t_i - w, t_i + w] (at least two samples a side),
+/// solved directly: the reference for the filter form.
+double directQuadraticFit(const std::vector<double>& t, const std::vector<double>& y, double w, std::size_t i, int order) {
+  std::size_t a = i, b = i;
+  while (a > 0 && (t[i] - t[a - 1] <= w || i - a < 2)) --a;
+  while (b + 1 < t.size() && (t[b + 1] - t[i] <= w || b - i < 2)) ++b;
+  Eigen::MatrixXd basis(b - a + 1, 3);
+  Eigen::VectorXd v(b - a + 1);
+  for (std::size_t j = a; j <= b; ++j) {
+    const double s = t[j] - t[i];
+    basis.row(j - a) << 1.0, s, s * s;
+    v[j - a] = y[j];
+  }
+  const Eigen::Vector3d c = basis.colPivHouseholderQr().solve(v);
+  return order == 0 ? c[0] : (order == 1 ? c[1] : 2.0 * c[2]);
+}
+
+TEST(LogSignals, TheSmoothingFilterIsTheLocalQuadraticFitOnUniformAndJitteredSampling) {
+  // On a uniform log the weights are solved once per window shape and applied as a filter; on a
+  // jittered one, per sample. Both must be the least-squares fit, and exact on a quadratic.
+  for (const bool jitter : {false, true}) {
+    std::vector<double> t, y, quadratic;
+    for (int i = 0; i <= 3000; ++i) {
+      t.push_back(0.001 * i + (jitter ? 2e-4 * std::sin(1.7 * i) : 0.0));
+      y.push_back(std::sin(7.0 * t.back()) + 0.01 * std::cos(911.0 * i));
+      quadratic.push_back(2.0 - 3.0 * t.back() + 4.0 * t.back() * t.back());
+    }
+    for (int order = 0; order <= 2; ++order) {
+      const std::vector<double> d = smoothedDerivative(t, y, 0.0151, order);
+      const std::vector<double> q = smoothedDerivative(t, quadratic, 0.0151, order);
+      double worst = 0.0, worst_quadratic = 0.0;
+      for (std::size_t i = 0; i < t.size(); i += 7) {
+        worst = std::max(worst, std::fabs(d[i] - directQuadraticFit(t, y, 0.0151, i, order)));
+        const double exact = order == 0 ? quadratic[i] : (order == 1 ? -3.0 + 8.0 * t[i] : 8.0);
+        worst_quadratic = std::max(worst_quadratic, std::fabs(q[i] - exact));
+      }
+      const double scale = order == 0 ? 1.0 : (order == 1 ? 7.0 : 49.0);
+      EXPECT_LT(worst, 1e-9 * scale * std::pow(1000.0, order)) << "jitter " << jitter << " order " << order;
+      EXPECT_LT(worst_quadratic, 1e-9 * 8.0 * std::pow(1000.0, order)) << "jitter " << jitter << " order " << order;
+    }
+  }
 }
 
 TEST(LogSignals, NearestAlongSmoothedKeepsOneSamplesNoiseAndFollowsTheSignal) {
