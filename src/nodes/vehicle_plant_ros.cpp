@@ -46,6 +46,8 @@ VehiclePlantRos::VehiclePlantRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::s
   publish_clock_ = params.flag("publish_clock", true);
   const double max_state_batch = params.number("max_state_batch", 0.01, 0.0, 1.0, "s");
   const double tick = params.number("realtime_tick", 1e-3, 1e-5, 1.0, "s");
+  lag_warning_ = params.number("lag_warning", 0.1, 1e-4, 3600.0, "s");
+  lag_warning_period_ = params.number("lag_warning_period", 2.0, 0.0, 3600.0, "s");
   VisualizationOptions vis;
   vis.rate = params.number("visualization_rate", 50.0, 0.0, 1e4, "Hz");
   vis.trail_spacing = params.number("trail_spacing", 0.1, 0.0, 100.0, "s");
@@ -201,9 +203,32 @@ void VehiclePlantRos::advance() {
     rows_seen_ = rows;
   }
   if (realtime_ && steps > 0) {
-    lag_.push_back(nanosecondsToSeconds(wallElapsed() - session_->plant().time()));
+    const double lag = nanosecondsToSeconds(wallElapsed() - session_->plant().time());
+    lag_.push_back(lag);
+    if (lag > max_lag_) {
+      max_lag_ = lag;
+      max_lag_at_ = session_->plant().time();
+    }
+    warnIfBehind(lag);
   }
   if (session_->done()) finish();
+}
+
+void VehiclePlantRos::warnIfBehind(double lag) {
+  // The plant steps up to the wall clock on every tick; a lag that grows means the loop (the plant's
+  // steps plus a message round trip per actuator cycle) is slower than real time. Said while it
+  // happens, throttled on the wall clock (sim time is what lags), and counted for the summary.
+  if (lag <= lag_warning_) return;
+  const ros::WallTime now = ros::WallTime::now();
+  if (lag_warnings_ > 0 && (now - last_lag_warning_).toSec() < lag_warning_period_) return;
+  ++lag_warnings_;
+  last_lag_warning_ = now;
+  const double t = nanosecondsToSeconds(session_->plant().time());
+  const double wall = (now - wall_start_).toSec();
+  ROS_WARN("%s: realtime run %.3f s behind the wall clock at t = %.2f s (%.2fx real time so far; lag_warning = %g s): "
+           "the loop cannot keep up here%s",
+           name_.c_str(), lag, t, wall > 0 ? t / wall : 0.0, lag_warning_,
+           config_.actuator.rate > 2000.0 ? " (a fast actuator over three processes: try nodelets:=true)" : "");
 }
 
 void VehiclePlantRos::publishClock(bool force) {
@@ -251,7 +276,18 @@ void VehiclePlantRos::finish() {
   text << formatSummary(summarizeRun(config_, result));
   text << "wall time:              " << wall << " s (" << result.end_time / wall << "x real time, "
        << result.plant_steps << " plant steps, " << (realtime_ ? "realtime" : "lockstep") << " over ROS)\n";
-  if (realtime_) text << "realtime lag:           " << percentiles(lag_) << " behind the wall clock\n";
+  if (realtime_) {
+    text << "realtime lag:           " << percentiles(lag_) << " behind the wall clock\n";
+    char verdict[240];
+    if (max_lag_ > lag_warning_) {
+      std::snprintf(verdict, sizeof(verdict),
+                    "FELL BEHIND the wall clock: up to %.3f s (at t = %.2f s), %.2fx real time over the run; %zu "
+                    "warning(s)", max_lag_, nanosecondsToSeconds(max_lag_at_), result.end_time / wall, lag_warnings_);
+    } else {
+      std::snprintf(verdict, sizeof(verdict), "kept up (lag at most %.3f s, lag_warning = %g s)", max_lag_, lag_warning_);
+    }
+    text << "realtime:               " << verdict << "\n";
+  }
   text << "loop messages:          " << measured_pub_.messages() << " measured_steering, " << state_pub_.messages()
        << " vehicle_state sent; " << torque_messages_ << " steering_torque, " << desired_messages_
        << " desired_steering received\n";

@@ -59,6 +59,7 @@ class VehiclePlantRos {
   std::string connectionProblem() const;
   std::string stallDescription() const;
   Nanoseconds wallElapsed() const;
+  void warnIfBehind(double lag);
 
   ros::NodeHandle nh_, pnh_;
   std::string name_;
@@ -92,6 +93,13 @@ class VehiclePlantRos {
   std::size_t rows_seen_ = 0;
   std::uint64_t torque_messages_ = 0, desired_messages_ = 0;
   std::vector<double> lag_;  // realtime: wall lag of the plant behind wall_start + t after each advance [s]
+  // realtime: a lag above lag_warning_ is warned about while the run goes on (at most every
+  // lag_warning_period_ of wall time) and the summary says the run fell behind.
+  double lag_warning_ = 0.1, lag_warning_period_ = 2.0;
+  double max_lag_ = 0.0;
+  Nanoseconds max_lag_at_ = 0;
+  std::size_t lag_warnings_ = 0;
+  ros::WallTime last_lag_warning_;
 };
 
 }  // namespace lane_keeping
