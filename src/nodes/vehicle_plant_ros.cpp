@@ -295,20 +295,28 @@ void VehiclePlantRos::finish() {
     text << "rejected inputs:        " << torque_rejects_.count() << " on " << torque_sub_.getTopic() << ", "
          << desired_rejects_.count() << " on " << desired_sub_.getTopic() << "\n";
   }
-  if (!log_file_.empty()) {
-    try {
-      writeLogCsv(log_file_, result.rows);
-      std::ofstream config_out(log_file_ + ".config.yaml");
-      config_out << "# effective configuration of " << log_file_ << "\n";
-      config_.print(config_out);
-      text << "log:                    " << log_file_ << " (" << result.rows.size() << " rows)\n";
-    } catch (const LaneKeepingError& e) {
-      ROS_ERROR("%s: %s", name_.c_str(), e.what());
-    }
-  }
+  text << writeLog();
   std::cout << text.str() << std::flush;
   end(result.diverged() ? 3 : 0, result.diverged() ? RunStatus::DIVERGED : RunStatus::COMPLETED, result.message,
       text.str());
+}
+
+std::string VehiclePlantRos::writeLog() {
+  // The rows recorded so far, at the end of a run and at a fault alike: a run stopped by a dead node
+  // keeps its log up to the stop. A log that cannot be written (no such folder, the disk full) is an
+  // error naming the file, and the summary says the log is missing.
+  if (log_file_.empty()) return "";
+  const std::vector<LogRow>& rows = session_->result().rows;
+  try {
+    writeLogCsv(log_file_, rows);
+    std::ofstream config_out(log_file_ + ".config.yaml");
+    config_out << "# effective configuration of " << log_file_ << "\n";
+    config_.print(config_out);
+    return "log:                    " + log_file_ + " (" + std::to_string(rows.size()) + " rows)\n";
+  } catch (const LaneKeepingError& e) {
+    ROS_ERROR("%s: %s", name_.c_str(), e.what());
+    return std::string("log:                    NOT WRITTEN: ") + e.what() + "\n";
+  }
 }
 
 void VehiclePlantRos::fail(const std::string& message) {
@@ -316,7 +324,9 @@ void VehiclePlantRos::fail(const std::string& message) {
   const std::string text = name_ + ": run stopped at t = " + formatSeconds(t) + ": " + message;
   ROS_ERROR("%s", text.c_str());
   std::cout << text << std::endl;
-  end(1, RunStatus::FAILED, message, "");
+  const std::string log = writeLog();
+  if (!log.empty()) std::cout << log << std::flush;
+  end(1, RunStatus::FAILED, message, log);
 }
 
 void VehiclePlantRos::end(int exit_code, std::uint8_t state, const std::string& message, const std::string& summary) {

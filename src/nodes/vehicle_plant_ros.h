@@ -60,6 +60,7 @@ class VehiclePlantRos {
   std::string stallDescription() const;
   Nanoseconds wallElapsed() const;
   void warnIfBehind(double lag);
+  std::string writeLog();  // the log so far (if log_file is set); a line for the summary
 
   ros::NodeHandle nh_, pnh_;
   std::string name_;

@@ -19,7 +19,7 @@ import rospy
 import rostest
 from rosgraph_msgs.msg import Clock
 
-from lk_test_support import StatusWatcher, wait_for
+from lk_test_support import StatusWatcher, read_csv, wait_for
 
 
 class CheckNodeFailure(unittest.TestCase):
@@ -55,7 +55,33 @@ class CheckNodeFailure(unittest.TestCase):
             for text in case['expect']:
                 if text not in status.message:
                     problems.append('%s: stop message lacks "%s": %s' % (ns, text, status.message))
+            if 'log_file' in case:
+                problems += self.check_log_up_to_the_stop(ns, case['log_file'], status)
         self.assertEqual(problems, [], '\n'.join(problems))
+
+    @staticmethod
+    def check_log_up_to_the_stop(ns, path, status):
+        """The log of a stopped run holds every row up to the stop, each complete, with rising t."""
+        if not os.path.exists(path):
+            return ['%s: no log at %s after the stop' % (ns, path)]
+        header, rows = read_csv(path)
+        problems = []
+        if len(rows) < 10:
+            return ['%s: the log holds %d rows only' % (ns, len(rows))]
+        if any(len(r) != len(header) or '' in r for r in rows):
+            problems.append('%s: a log row is incomplete' % ns)
+        t = [float(r[header.index('t')]) for r in rows]
+        if any(b <= a for a, b in zip(t, t[1:])):
+            problems.append('%s: log times do not rise' % ns)
+        # The log's rows reach the stop, less the controllers' delays (a row waits for their outputs).
+        if not status.simulated_time - 0.05 <= t[-1] <= status.simulated_time + 1e-9:
+            problems.append('%s: log ends at t = %.4f s, the run stopped at %.4f s' % (ns, t[-1], status.simulated_time))
+        if 'rows)' not in status.summary:
+            problems.append('%s: the stop does not name the log: %r' % (ns, status.summary))
+        rospy.loginfo('%s: log %s: %d rows up to t = %.4f s (stopped at %.4f s)', ns, path, len(rows), t[-1],
+                      status.simulated_time)
+        os.remove(path)
+        return problems
 
 
 if __name__ == '__main__':

@@ -1,6 +1,8 @@
 #include "lane_keeping/sim/log_row.h"
 
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <fstream>
 #include <ostream>
 
@@ -45,7 +47,12 @@ void writeLogCsv(const std::string& path, const std::vector<LogRow>& rows) {
   std::ofstream out(path);
   if (!out) throw InputError(path + ": cannot open for writing");
   writeLogCsv(out, rows);
-  if (!out) throw InputError(path + ": write failed");
+  // The stream buffers: a full disk may show only when the last block goes out, at close.
+  out.close();
+  if (out.fail()) {
+    throw InputError(path + ": writing " + std::to_string(rows.size()) + " log rows failed (disk full?): " +
+                     std::strerror(errno));
+  }
 }
 
 }  // namespace lane_keeping
