@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages lane_keeping needs (ROS 1 from Debian, Eigen, yaml-cpp, Ceres,
-# GoogleTest, matplotlib, Xvfb, Dask and pytest for lk_fleet). Does nothing when everything is already installed.
+# GoogleTest, matplotlib, Xvfb, Dask and pytest for lk_fleet; clang 16 with libFuzzer and the sanitizer runtimes
+# for the fuzz targets in fuzz/). Does nothing when everything is already installed.
 set -euo pipefail
 
 PACKAGES=(
@@ -11,6 +12,7 @@ PACKAGES=(
   libeigen3-dev libyaml-cpp-dev libceres-dev libgtest-dev nlohmann-json3-dev python3-matplotlib python3-numpy
   xvfb xauth imagemagick
   python3-distributed python3-dask python3-pytest python3-yaml
+  clang-16 libfuzzer-16-dev libclang-rt-16-dev
 )
 
 missing=()
