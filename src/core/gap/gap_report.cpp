@@ -304,7 +304,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   Json j;
   try {
     j = Json::parse(in);
-  } catch (const Json::parse_error& e) {
+  } catch (const Json::exception& e) {  // parse_error, and out_of_range for a number beyond double's range
     throw InputError(path + ": not valid JSON: " + e.what());
   }
   const Reader r(path);

@@ -254,6 +254,19 @@ TEST(GapReportJson, NonFiniteNumbersBecomeNull) {
   EXPECT_EQ(back.verdict.effect, "unexplained");
 }
 
+// Found by fuzzing (fuzz/regressions/gap_report/number_overflow.json): a number beyond double's range made
+// nlohmann::json throw out_of_range (not parse_error), which escaped the reader.
+TEST(GapReportJson, NumberBeyondDoubleRangeIsAnInputErrorNamingTheFile) {
+  const std::string path = tempDir("gr_overflow") + "/report.json";
+  std::ofstream(path) << "{\"rows_used\": 2.7E89745673883776}\n";
+  try {
+    readGapReportJson(path);
+    ADD_FAILURE() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_TRUE(has(e.what(), path + ": not valid JSON")) << e.what();
+  }
+}
+
 TEST(GapReportJson, ErrorsNameFileAndKey) {
   const std::string dir = tempDir("gr_errors");
   // Unwritable target.
