@@ -1,9 +1,11 @@
 #pragma once
 /// The reference path (lane centre) as a graph y = f(x) in the map frame.
+#include <cmath>
 #include <string>
 #include <vector>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/param_readers.h"  // formatNumber
 #include "lane_keeping/config/param_visitor.h"
 
 namespace lane_keeping {
@@ -38,17 +40,40 @@ struct PathParams {
              "(relative to this file; a lane from a map)");
   }
 
+  /// Waypoints farther than this from the map origin [m] (a map frame spanning a continent, as the gap
+  /// logs' x and y) are a unit error; the spline's arithmetic stays finite within it.
+  static constexpr double kMaxWaypointCoordinate = 1e8;
+  /// Waypoints closer than this in x [m] make the spline's slopes (y difference / x difference) overflow:
+  /// found by fuzzing (x = 0 and 3.5e-310 gave a NaN lane). A map's points are centimetres apart or more.
+  static constexpr double kMinWaypointSpacing = 1e-3;
+
+  /// Cross-field and shape rules; that every value is finite is RangeChecker's (param_readers.h).
   void validate(const std::string& prefix, std::vector<ConfigProblem>& problems) const {
     if (type != "waypoints") return;
     if (waypoints.size() < 2) {
       problems.push_back({prefix + "waypoints", "", "needs at least 2 points, got " + std::to_string(waypoints.size())});
       return;
     }
+    for (std::size_t i = 0; i < waypoints.size(); ++i) {
+      for (int c = 0; c < 2; ++c) {
+        const double v = waypoints[i][c];
+        if (std::isfinite(v) && std::fabs(v) > kMaxWaypointCoordinate) {
+          problems.push_back({prefix + "waypoints", "",
+                              "[" + std::to_string(i) + "]: " + (c == 0 ? "x" : "y") + " = " + formatNumber(v) +
+                                  " m is beyond 1e8 m from the map origin; check the unit"});
+        }
+      }
+    }
     for (std::size_t i = 1; i < waypoints.size(); ++i) {
       if (!(waypoints[i][0] > waypoints[i - 1][0])) {
         problems.push_back({prefix + "waypoints", "",
                             "[" + std::to_string(i) + "]: x must increase strictly along the lane (x[" +
                                 std::to_string(i) + "] <= x[" + std::to_string(i - 1) + "])"});
+      } else if (waypoints[i][0] - waypoints[i - 1][0] < kMinWaypointSpacing) {
+        problems.push_back({prefix + "waypoints", "",
+                            "[" + std::to_string(i) + "]: x = " + formatNumber(waypoints[i][0]) + " m is only " +
+                                formatNumber(waypoints[i][0] - waypoints[i - 1][0]) + " m after x[" +
+                                std::to_string(i - 1) + "]; waypoints must be at least 0.001 m apart in x"});
       }
     }
   }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/param_readers.h"
 
 namespace lane_keeping {
 namespace {
@@ -266,7 +267,11 @@ std::shared_ptr<const Path> createPath(const PathParams& params) {
                                           params.sinusoid_start);
   }
   if (params.type == "waypoints") {
-    std::vector<ConfigProblem> problems;
+    // The same checks as SimConfig::problems(): finite values (RangeChecker), then the shape rules.
+    PathParams copy = params;  // visit() takes non-const references
+    RangeChecker checker;
+    copy.visit(checker, "path.");
+    std::vector<ConfigProblem> problems = checker.problems();
     params.validate("path.", problems);
     if (!problems.empty()) throw ConfigError(problems);
     return std::make_shared<WaypointPath>(params.waypoints);

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <random>
 
+#include "lane_keeping/common/errors.h"
 #include "lane_keeping/control/path.h"
 #include "lane_keeping/control/path_params.h"
 
@@ -106,6 +107,42 @@ TEST(Path, AHundredThousandWaypointsBuildAndMatchTheSplineThroughThem) {
     ASSERT_NEAR(f, points[i][1], 1e-9);
   }
   EXPECT_NEAR(projectedDistance(*lane, 30000.0, points[60000][1] + 0.7), 0.7, 0.05);
+}
+
+}  // namespace
+}  // namespace lane_keeping
+
+namespace lane_keeping {
+namespace {
+
+std::string pathError(const std::vector<Point2>& points) {
+  try {
+    waypointLane(points);
+  } catch (const ConfigError& e) {
+    return e.what();
+  }
+  return "(no ConfigError)";
+}
+
+bool has(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+// Found by fuzzing (fuzz/regressions/path/denormal_spacing.bin): waypoints 3.5e-310 m apart passed the
+// "x increases" check and made a NaN lane (and an undefined int conversion of NaN in project()).
+TEST(PathFuzzRegressions, WaypointsCloserThanAMillimetreAreRefusedNamingThePoint) {
+  const std::string error = pathError({{0.0, 0.0}, {3.47328271065196e-310, 1.0156250001164153}, {2.0, 2.0}, {3.0, 3.0}});
+  EXPECT_TRUE(has(error, "path.waypoints") && has(error, "[1]") && has(error, "0.001 m apart")) << error;
+  // 1 mm apart is a lane, and its queries are finite.
+  const auto lane = waypointLane({{0.0, 0.0}, {1e-3, 1.0}, {2.0, 2.0}, {3.0, 3.0}});
+  const PathErrors e = lane->errors(1e-3, 2.0, 0.1, 0.0, 0.0, 0.0);
+  EXPECT_TRUE(std::isfinite(e.lateral) && std::isfinite(e.heading) && std::isfinite(e.curvature)) << e.lateral;
+}
+
+TEST(PathFuzzRegressions, NonFiniteAndHugeWaypointsAreRefusedByCreatePath) {
+  const double nan = std::nan("");
+  std::string error = pathError({{0.0, 0.0}, {1.0, nan}, {2.0, 0.0}});
+  EXPECT_TRUE(has(error, "path.waypoints") && has(error, "[1] is not finite")) << error;
+  error = pathError({{-1e300, 0.0}, {1e300, 0.0}});
+  EXPECT_TRUE(has(error, "path.waypoints") && has(error, "beyond 1e8 m")) << error;
 }
 
 }  // namespace
