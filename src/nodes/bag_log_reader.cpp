@@ -2,11 +2,17 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <vector>
 
+#include <ros/exception.h>
 #include <rosbag/bag.h>
+#include <rosbag/exceptions.h>
 #include <rosbag/view.h>
 
 #include <lane_keeping/DesiredSteeringArray.h>
@@ -41,9 +47,140 @@ bool interpolate(const std::vector<std::pair<Nanoseconds, double>>& series, Nano
   return true;
 }
 
+/// rosbag trusts the lengths, counts and offsets a bag states: a corrupt or truncated bag makes it allocate
+/// what a length field says (gigabytes) or read records at offsets inside other records. So the records
+/// are walked first (bag format 2.0: "#ROSBAG V2.0\n", then records of <header_len><header><data_len><data>,
+/// each header a list of <field_len><name>=<value>), and a bag whose records overrun the file, whose index
+/// position or chunk positions are not record boundaries, or whose chunks would decompress beyond
+/// kMaxChunkBytes is refused naming the byte offset. (rosbag writes 768 kB chunks; 256 MiB is generous.)
+class BagStructure {
+ public:
+  static constexpr std::uint64_t kMaxChunkBytes = 256ull << 20;
+
+  explicit BagStructure(const std::string& path) : path_(path), in_(path, std::ios::binary) {
+    if (!in_) return;  // rosbag names the open error
+    in_.seekg(0, std::ios::end);
+    size_ = static_cast<std::uint64_t>(in_.tellg());
+    in_.seekg(0);
+    char version[13] = {};
+    in_.read(version, sizeof(version));
+    if (!in_ || std::memcmp(version, "#ROSBAG V2.0\n", sizeof(version)) != 0) {
+      // rosbag would take any first line "#ROS<anything> V2.0" and read records after it.
+      fail(0, "the first line is not '#ROSBAG V2.0' (the format rosbag records)");
+    }
+    std::uint64_t index_pos = 0;
+    std::set<std::uint64_t> records, chunks, chunk_positions;
+    for (std::uint64_t at = sizeof(version); at < size_;) {
+      records.insert(at);
+      Fields fields;
+      const std::uint64_t data_at = readHeader(at, size_, &fields);
+      const std::uint64_t data_len = readLength(data_at, size_, "data");
+      const std::uint64_t next = data_at + 4 + data_len;
+      const std::string op = fields.count("op") ? fields["op"] : std::string();
+      if (op == std::string(1, '\x03')) index_pos = number(fields, "index_pos", at);
+      if (op == std::string(1, '\x06')) chunk_positions.insert(number(fields, "chunk_pos", at));
+      if (op == std::string(1, '\x05')) {
+        chunks.insert(at);
+        const std::uint64_t size = number(fields, "size", at);
+        if (size > kMaxChunkBytes) fail(at, "a chunk of " + std::to_string(size) + " bytes uncompressed");
+        if (fields["compression"] == "none") {
+          if (size != data_len) fail(at, "an uncompressed chunk whose size field differs from its data length");
+          for (std::uint64_t inner = data_at + 4; inner < next;) {  // message and connection records
+            Fields inner_fields;
+            const std::uint64_t inner_data = readHeader(inner, next, &inner_fields);
+            const std::uint64_t inner_len = readLength(inner_data, next, "data");
+            if (inner_fields["op"] == std::string(1, '\x07')) readFields(inner, inner_data + 4, inner_len, &inner_fields);
+            inner = inner_data + 4 + inner_len;
+          }
+        }
+      }
+      // A connection record's data is a connection header, in the same field format (rosbag parses it).
+      if (op == std::string(1, '\x07')) readFields(at, data_at + 4, data_len, &fields);
+      at = next;
+    }
+    if (index_pos != 0 && records.count(index_pos) == 0) fail(13, "index position " + std::to_string(index_pos) + " is not a record");
+    for (std::uint64_t chunk : chunk_positions) {
+      if (chunks.count(chunk) == 0) fail(13, "chunk position " + std::to_string(chunk) + " is not a chunk");
+    }
+  }
+
+ private:
+  using Fields = std::map<std::string, std::string>;
+
+  [[noreturn]] void fail(std::uint64_t at, const std::string& what) const {
+    throw InputError(path_ + ": not a readable bag (corrupt or truncated): byte " + std::to_string(at) + ": " + what);
+  }
+  std::string bytes(std::uint64_t at, std::uint64_t count) {
+    std::string out(count, '\0');
+    in_.seekg(static_cast<std::streamoff>(at));
+    in_.read(out.data(), static_cast<std::streamsize>(count));
+    if (!in_) fail(at, "cannot read " + std::to_string(count) + " bytes");
+    return out;
+  }
+  /// A little-endian uint32 length at `at` whose bytes, and the `count` bytes it announces, end by `end`.
+  std::uint64_t readLength(std::uint64_t at, std::uint64_t end, const char* what) {
+    if (at + 4 > end) fail(at, std::string("the ") + what + " length runs past the end of its record or file");
+    const std::string raw = bytes(at, 4);
+    std::uint32_t length = 0;
+    std::memcpy(&length, raw.data(), 4);
+    if (at + 4 + length > end) {
+      fail(at, std::string("a ") + what + " of " + std::to_string(length) + " bytes runs past the end of its record or file");
+    }
+    return length;
+  }
+  /// The record header at `at` (its fields into `fields`); returns where the data length is.
+  std::uint64_t readHeader(std::uint64_t at, std::uint64_t end, Fields* fields) {
+    const std::uint64_t length = readLength(at, end, "header");
+    readFields(at, at + 4, length, fields);
+    return at + 4 + length;
+  }
+  /// The `length` bytes at `from` as header fields <field_len><name>=<value> of the record at `at`.
+  void readFields(std::uint64_t at, std::uint64_t from, std::uint64_t length, Fields* fields) {
+    const std::string header = bytes(from, length);
+    for (std::uint64_t f = 0; f < length;) {
+      if (f + 4 > length) fail(at, "a header field length runs past its header");
+      std::uint32_t field_len = 0;
+      std::memcpy(&field_len, header.data() + f, 4);
+      if (f + 4 + field_len > length) fail(at, "a header field of " + std::to_string(field_len) + " bytes runs past its header");
+      const std::string field = header.substr(f + 4, field_len);
+      const std::size_t eq = field.find('=');
+      if (eq == std::string::npos) fail(at, "a header field without '='");
+      (*fields)[field.substr(0, eq)] = field.substr(eq + 1);
+      f += 4 + field_len;
+    }
+  }
+  std::uint64_t number(Fields& fields, const std::string& name, std::uint64_t at) const {
+    const std::string& value = fields[name];
+    if (value.size() != 4 && value.size() != 8) fail(at, "header field '" + name + "' missing or not 4 or 8 bytes");
+    std::uint64_t out = 0;
+    std::memcpy(&out, value.data(), value.size());
+    return out;
+  }
+
+  std::string path_;
+  std::ifstream in_;
+  std::uint64_t size_ = 0;
+};
+
+/// The reading proper; rosbag's and roscpp's exceptions pass through it (readBagLog turns them into InputError).
+GapLog readSuiteTopics(const std::string& path, double max_rate);
+
 }  // namespace
 
 GapLog readBagLog(const std::string& path, double max_rate) {
+  try {
+    return readSuiteTopics(path, max_rate);
+  } catch (const rosbag::BagException& e) {
+    throw InputError(path + ": not a readable bag: " + e.what());
+  } catch (const ros::Exception& e) {  // ros::serialization's StreamOverrunException: a message cut short
+    throw InputError(path + ": not a readable bag (a message does not match its type): " + e.what());
+  }
+}
+
+namespace {
+
+GapLog readSuiteTopics(const std::string& path, double max_rate) {
+  BagStructure{path};  // throws InputError on a bag rosbag would misread
   rosbag::Bag bag;
   try {
     bag.open(path, rosbag::bagmode::Read);
@@ -144,5 +281,7 @@ GapLog readBagLog(const std::string& path, double max_rate) {
   if (log.size() < 10) throw InputError(path + ": fewer than 10 usable samples in the bag");
   return log;
 }
+
+}  // namespace
 
 }  // namespace lane_keeping

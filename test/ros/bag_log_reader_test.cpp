@@ -3,6 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
+#include <string>
 
 #include <rosbag/bag.h>
 #include <std_msgs/Float64.h>
@@ -103,6 +106,68 @@ TEST(BagLogReader, BagWithoutTheSuiteTopicsNamesWhatIsMissing) {
     EXPECT_NE(what.find("/speedometer"), std::string::npos) << what;  // lists what the bag holds
   }
   EXPECT_THROW(readBagLog(tempBag("does_not_exist.bag")), InputError);
+}
+
+
+/// readBagLog's error for `path`, or "(no InputError)"; rosbag's own exceptions fail the test by escaping.
+std::string bagError(const std::string& path) {
+  try {
+    readBagLog(path);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "(no InputError)";
+}
+
+void writeBytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc).write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+std::string readBytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
+}
+
+// Found by fuzzing (fuzz/regressions/bag_log/): rosbag allocates what a bag's length fields state (4 GiB for
+// a corrupt header length: out of memory, not an error) and takes any first line "#ROS... V2.0". The
+// reader walks the records first and names the bag and the byte.
+TEST(BagLogReaderFuzzRegressions, CorruptOrTruncatedBagsAreInputErrorsNamingTheBag) {
+  const std::string good = tempBag("fuzz_good.bag");
+  writeSuiteBag(good, true);
+  const std::string bytes = readBytes(good);
+  ASSERT_EQ(bytes.compare(0, 13, "#ROSBAG V2.0\n"), 0);
+
+  std::string corrupt = bytes;
+  corrupt.replace(13, 4, "\xff\xff\xff\xff");  // the file header record's header length
+  const std::string header_length = tempBag("fuzz_header_length.bag");
+  writeBytes(header_length, corrupt);
+  std::string error = bagError(header_length);
+  EXPECT_NE(error.find(header_length + ": not a readable bag (corrupt or truncated): byte 13"), std::string::npos) << error;
+
+  const std::string truncated = tempBag("fuzz_truncated.bag");
+  writeBytes(truncated, bytes.substr(0, bytes.size() / 2));
+  error = bagError(truncated);
+  EXPECT_NE(error.find(truncated + ": not a readable bag"), std::string::npos) << error;
+
+  const std::string prefixed = tempBag("fuzz_version_line.bag");
+  writeBytes(prefixed, "#ROS" + bytes);  // rosbag reads "#ROS#ROSBAG V2.0" as version 2.0
+  error = bagError(prefixed);
+  EXPECT_NE(error.find(prefixed + ": not a readable bag"), std::string::npos) << error;
+  EXPECT_NE(error.find("#ROSBAG V2.0"), std::string::npos) << error;
+
+  EXPECT_GT(readBagLog(good).size(), 10u);  // the walk accepts what rosbag writes
+}
+
+// Every bag that once crashed the fuzz target (fuzz/regressions/bag_log/: a 4 GiB header length, a
+// connection header whose field runs past it - a heap overflow in ros::Header::parse -, a truncated bag,
+// a prefixed version line) is an InputError naming it.
+TEST(BagLogReaderFuzzRegressions, EveryRegressionInputIsAnInputErrorNamingTheBag) {
+  const std::string dir = std::string(LANE_KEEPING_SOURCE_DIR) + "/fuzz/regressions/bag_log/";
+  for (const char* name : {"header_length_4gib.bag", "connection_header_field.bag", "truncated.bag",
+                           "version_line_prefix.bag"}) {
+    const std::string error = bagError(dir + name);
+    EXPECT_NE(error.find(dir + name + ": not a readable bag"), std::string::npos) << name << ": " << error;
+  }
 }
 
 }  // namespace
