@@ -46,6 +46,11 @@ void FlatParams::overlayNode(const YAML::Node& root, const std::string& origin) 
 
 void FlatParams::flatten(const YAML::Node& node, const std::string& prefix, const std::string& origin) {
   for (const auto& item : node) {
+    if (!item.first.IsScalar()) {  // "? [a, b]: 1" or "{[1]: 2}": found by fuzzing (yaml-cpp's BadConversion escaped)
+      throw ConfigError(std::vector<ConfigProblem>{
+          {prefix, lineOf(origin, item.first.Mark()),
+           std::string("a key must be a name, found a ") + (item.first.IsSequence() ? "list" : item.first.IsMap() ? "mapping" : "null")}});
+    }
     const std::string name = item.first.as<std::string>();
     const std::string key = prefix.empty() ? name : prefix + "." + name;
     const YAML::Node& value = item.second;

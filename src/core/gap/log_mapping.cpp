@@ -36,6 +36,12 @@ double number(const YAML::Node& node, const std::string& key, const std::string&
   return value;
 }
 
+/// A mapping key as a name; a list or mapping as a key ("? [a]: 1") is refused naming file:line.
+std::string keyName(const YAML::Node& key, const std::string& where, const std::string& file) {
+  if (!key.IsScalar()) fail(where, at(file, key), "a key must be a name, not a list or mapping");
+  return key.Scalar();
+}
+
 std::string text(const YAML::Node& node, const std::string& key, const std::string& file) {
   if (!node.IsScalar()) fail(key, at(file, node), "must be a column name");
   return node.as<std::string>();
@@ -61,7 +67,7 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
   m.source = file;
   if (!section.IsMap()) fail("log", at(file, section), "must be a mapping with time: and columns:");
   for (const auto& item : section) {
-    const std::string key = item.first.as<std::string>();
+    const std::string key = keyName(item.first, "log", file);
     if (key != "time" && key != "columns") {
       fail("log." + key, at(file, item.first), "is not a log mapping key (time, columns)");
     }
@@ -69,7 +75,7 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
   if (const YAML::Node time = section["time"]) {
     if (!time.IsMap()) fail("log.time", at(file, time), "must be {column: NAME, unit: s|ms|us|ns}");
     for (const auto& item : time) {
-      const std::string key = item.first.as<std::string>();
+      const std::string key = keyName(item.first, "log.time", file);
       if (key == "column") {
         m.time_column = text(item.second, "log.time.column", file);
       } else if (key == "unit") {
@@ -88,7 +94,7 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
   if (const YAML::Node columns = section["columns"]) {
     if (!columns.IsMap()) fail("log.columns", at(file, columns), "must map schema columns to {column: NAME, ...}");
     for (const auto& item : columns) {
-      const std::string schema = item.first.as<std::string>();
+      const std::string schema = keyName(item.first, "log.columns", file);
       const std::string key = "log.columns." + schema;
       if (!isSchemaColumn(schema) || schema == "t") {
         fail(key, at(file, item.first),
@@ -101,7 +107,7 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
         c.column = item.second.as<std::string>();  // short form: delta: steering_angle
       } else if (item.second.IsMap()) {
         for (const auto& field : item.second) {
-          const std::string f = field.first.as<std::string>();
+          const std::string f = keyName(field.first, key, file);
           if (f == "column") c.column = text(field.second, key + ".column", file);
           else if (f == "scale") c.scale = number(field.second, key + ".scale", file);
           else if (f == "offset") c.offset = number(field.second, key + ".offset", file);

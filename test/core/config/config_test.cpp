@@ -102,6 +102,19 @@ TEST(ConfigErrors, MalformedYamlNamesLine) {
   EXPECT_NE(error.find("malformed YAML"), std::string::npos) << error;
 }
 
+// Found by fuzzing (fuzz/regressions/sim_config/complex_key.yaml): a key that is a list or a mapping
+// ("? k_y: 0.05" makes the key the mapping {k_y: 0.05}) escaped as yaml-cpp's TypedBadConversion.
+TEST(ConfigErrors, AKeyThatIsNotANameNamesFileAndLine) {
+  const std::string file = writeTemp("complex_key.yaml", "tracker:\n  k_psi: 0.8\n? k_y: 0.05\n");
+  std::string error = errorOf({file});
+  EXPECT_NE(error.find("complex_key.yaml:3"), std::string::npos) << error;
+  EXPECT_NE(error.find("a key must be a name, found a mapping"), std::string::npos) << error;
+  error = errorOf({}, {"tracker={[1]: 2}"});
+  EXPECT_NE(error.find("a key must be a name, found a list"), std::string::npos) << error;
+  error = errorOf({kSource + "/fuzz/regressions/sim_config/complex_key.yaml"});
+  EXPECT_NE(error.find("a key must be a name"), std::string::npos) << error;
+}
+
 TEST(ConfigErrors, UnknownKeyAndTypeErrorsAreAllReported) {
   const std::string file = writeTemp("typos.yaml", "tracker:\n  k_yy: 0.1\n  k_psi: fast\nvehicle:\n  mass: 0\n");
   const std::string error = errorOf({file});

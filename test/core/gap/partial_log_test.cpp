@@ -61,6 +61,14 @@ TEST(LogMapping, MapsNamesScalesOffsetsAndTheTimeUnit) {
   EXPECT_EQ(log.mapping, map);
 }
 
+// The key rule the configuration reader broke under fuzzing (fuzz/regressions/sim_config/complex_key.yaml),
+// here too (fuzz/regressions/csv_log/mapping_complex_key): a list as a key was yaml-cpp's BadConversion.
+TEST(LogMapping, AListAsAKeyIsAConfigErrorNamingFileAndLine) {
+  const std::string error = configError("log:\n  columns:\n    ? [delta]\n    : steering\n");
+  EXPECT_NE(error.find("map_bad.yaml:3"), std::string::npos) << error;
+  EXPECT_NE(error.find("a key must be a name"), std::string::npos) << error;
+}
+
 TEST(LogMapping, BadMappingsNameTheFileLineAndKey) {
   EXPECT_NE(configError("log:\n  columns:\n    steer: {column: a}\n").find("map_bad.yaml:3"), std::string::npos);
   EXPECT_NE(configError("log:\n  columns:\n    steer: {column: a}\n").find("log.columns.steer"), std::string::npos);
