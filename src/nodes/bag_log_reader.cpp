@@ -10,10 +10,13 @@
 #include <sstream>
 #include <vector>
 
+#include <boost/make_shared.hpp>
 #include <ros/exception.h>
+#include <ros/serialization.h>
 #include <rosbag/bag.h>
 #include <rosbag/exceptions.h>
 #include <rosbag/view.h>
+#include <std_msgs/Header.h>
 
 #include <lane_keeping/DesiredSteeringArray.h>
 #include <lane_keeping/SteeringTorqueArray.h>
@@ -162,6 +165,33 @@ class BagStructure {
   std::uint64_t size_ = 0;
 };
 
+/// The message as MessageInstance::instantiate reads it (nullptr if its type differs), but with the sample
+/// count checked against the message's size first: roscpp resizes the array to the count the data states
+/// before it checks the data holds it (a corrupt count made a 131 GB allocation; found by fuzzing).
+template <typename ArrayMsg>
+boost::shared_ptr<ArrayMsg> instantiateChecked(const rosbag::MessageInstance& m, const std::string& path) {
+  namespace ser = ros::serialization;
+  if (m.getMD5Sum() != ros::message_traits::md5sum<ArrayMsg>()) return nullptr;
+  std::vector<std::uint8_t> raw(m.size());
+  ser::OStream out(raw.data(), static_cast<std::uint32_t>(raw.size()));
+  m.write(out);
+  ser::IStream in(raw.data(), static_cast<std::uint32_t>(raw.size()));
+  std_msgs::Header header;
+  std::uint32_t count = 0;
+  ser::deserialize(in, header);  // StreamOverrunException if short: readBagLog names the bag
+  ser::deserialize(in, count);
+  using Sample = typename decltype(ArrayMsg::samples)::value_type;
+  const std::uint64_t smallest = ser::serializationLength(Sample());  // a sample with an empty frame_id
+  if (count * smallest > in.getLength()) {
+    throw InputError(path + ": not a readable bag (corrupt message): a " + m.getTopic() + " message states " +
+                     std::to_string(count) + " samples in " + std::to_string(raw.size()) + " bytes");
+  }
+  auto msg = boost::make_shared<ArrayMsg>();
+  ser::IStream whole(raw.data(), static_cast<std::uint32_t>(raw.size()));
+  ser::deserialize(whole, *msg);
+  return msg;
+}
+
 /// The reading proper; rosbag's and roscpp's exceptions pass through it (readBagLog turns them into InputError).
 GapLog readSuiteTopics(const std::string& path, double max_rate);
 
@@ -215,15 +245,15 @@ GapLog readSuiteTopics(const std::string& path, double max_rate) {
   rosbag::View view(bag, rosbag::TopicQuery(std::vector<std::string>{state_topic, desired_topic, torque_topic}));
   for (const rosbag::MessageInstance& m : view) {
     if (m.getTopic() == state_topic) {
-      if (auto msg = m.instantiate<lane_keeping::VehicleStateArray>()) {
+      if (auto msg = instantiateChecked<lane_keeping::VehicleStateArray>(m, path)) {
         for (const auto& s : msg->samples) states.emplace_back(toNanoseconds(s.header.stamp), fromVehicleStateMsg(s));
       }
     } else if (m.getTopic() == desired_topic) {
-      if (auto msg = m.instantiate<lane_keeping::DesiredSteeringArray>()) {
+      if (auto msg = instantiateChecked<lane_keeping::DesiredSteeringArray>(m, path)) {
         for (const auto& s : msg->samples) desired.emplace_back(toNanoseconds(s.header.stamp), s.delta_des);
       }
     } else if (m.getTopic() == torque_topic) {
-      if (auto msg = m.instantiate<lane_keeping::SteeringTorqueArray>()) {
+      if (auto msg = instantiateChecked<lane_keeping::SteeringTorqueArray>(m, path)) {
         for (const auto& s : msg->samples) torque.emplace_back(toNanoseconds(s.header.stamp), s.torque);
       }
     }
