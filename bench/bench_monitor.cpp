@@ -3,7 +3,7 @@
 // "car" (the nominal configuration plus --truth assignments) is fed, row by row at --rate, into a
 // GapMonitor of the nominal configuration, with sensor noise at the default levels (noise_reference.h)
 // unless --no-noise (--set: assignments of both, e.g. the manoeuvre); every evaluation is timed on this thread's CPU clock.
-//   lk_bench_monitor [--scenario FILE] [--rate HZ] [--duration S] [--truth key=value]... [--set key=value]... [--no-noise]
+//   lk_bench_monitor [--scenario FILE] [--rate HZ] [--duration S] [--truth key=value]... [--set key=value]... [--no-noise] [--seed N]
 //                    [--sample-period S] [--window S] [--period S] [--draws N] [--reference-every S] [--max-floor F] [--warn E]
 //                    [--quiet]
 #include <time.h>
@@ -37,6 +37,7 @@ int main(int argc, char** argv) {
   double rate = 1000.0, duration = 60.0;
   std::vector<std::string> truth, settings;
   bool noise = true, quiet = false;
+  unsigned seed = 7;
   GapMonitorOptions options;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -53,6 +54,7 @@ int main(int argc, char** argv) {
     else if (arg == "--truth") truth.push_back(value());
     else if (arg == "--set") settings.push_back(value());
     else if (arg == "--no-noise") noise = false;
+    else if (arg == "--seed") seed = static_cast<unsigned>(std::atoi(value().c_str()));
     else if (arg == "--quiet") quiet = true;
     else if (arg == "--sample-period") options.sample_period = std::atof(value().c_str());
     else if (arg == "--window") options.window = std::atof(value().c_str());
@@ -76,7 +78,7 @@ int main(int argc, char** argv) {
     car_settings.insert(car_settings.end(), truth.begin(), truth.end());
     const RunResult run = ClosedLoop(loadSimConfig(files, car_settings)).run();
     GapLog log = gapLogFromRows(run.rows, "bench");
-    if (noise) addSensorNoise(log, SensorNoise{}, 7);
+    if (noise) addSensorNoise(log, SensorNoise{}, seed);
     std::printf("lane_keeping gap monitor benchmark: %s, %.0f s at %.0f Hz input, replays at %.0f Hz, window %.0f s, "
                 "every %.1f s%s%s\n",
                 scenario.substr(scenario.find_last_of('/') + 1).c_str(), duration, rate, 1.0 / options.sample_period,

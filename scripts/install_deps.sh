@@ -9,6 +9,7 @@ PACKAGES=(
   ros-core-dev libroscpp-dev catkin ros-message-generation librostest-dev python3-rostest
   libtf2-ros-dev libtf2-eigen-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   librosbag-dev python3-rosbag libnodeletlib-dev libnodeletlib-tools pluginlib-dev rviz
+  libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs libdiagnostic-aggregator-tools rosdiagnostic
   libeigen3-dev libyaml-cpp-dev libceres-dev libgtest-dev nlohmann-json3-dev python3-matplotlib python3-numpy
   xvfb xauth imagemagick
   python3-distributed python3-dask python3-pytest python3-yaml

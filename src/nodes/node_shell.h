@@ -80,14 +80,19 @@ class SharedExecutor {
   std::thread thread_;
 };
 
+/// Whether a role's nodelet joins the shared thread when the `shared_thread` parameter is not set:
+/// the loop's roles do; a role that only watches the loop (the gap monitor) specialises it to false.
+template <typename Role>
+struct SharedThreadDefault : std::true_type {};
+
 template <typename Role>
 class NodeletShell : public nodelet::Nodelet {
  private:
   void onInit() override {
     ros::NodeHandle nh = getNodeHandle();
     ros::NodeHandle pnh = getPrivateNodeHandle();
-    bool shared_thread = true;
-    pnh.param("shared_thread", shared_thread, true);
+    bool shared_thread = SharedThreadDefault<Role>::value;
+    pnh.param("shared_thread", shared_thread, shared_thread);
     if (shared_thread) {
       executor_ = SharedExecutor::acquire();
       nh.setCallbackQueue(executor_->queue());

@@ -20,7 +20,9 @@
 /// evaluation and after a restart of the window), not every period.
 /// Where in the window and in which frequency band the leading subsystem's excess lies comes from the
 /// diagnosis's "where" step (where_analysis.h).
+#include <cmath>
 #include <map>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -78,6 +80,15 @@ struct MonitorStatus {
   std::vector<std::string> notes;
 };
 
+/// The window's rows at one instant, for an evaluation that runs while the window keeps filling.
+struct MonitorSnapshot {
+  GapLog log;
+  double stamp = 0.0;          ///< the newest state stamp
+  std::size_t restarts = 0;    ///< the window's clock-jump count at that instant
+};
+
+/// Threads: the window (adding samples, due(), snapshot()) belongs to one thread, or to callers that
+/// serialise it; evaluate(snapshot) may run in another thread, and setOptions() in a third.
 class GapMonitor {
  public:
   /// Throws ConfigError (options) or what nominal.validate() throws.
@@ -85,28 +96,37 @@ class GapMonitor {
 
   MonitorWindow& window() { return window_; }
   const MonitorWindow& window() const { return window_; }
-  const GapMonitorOptions& options() const { return options_; }
+  GapMonitorOptions options() const;
   const SimConfig& nominal() const { return nominal_; }
 
   /// Thresholds, reference and period may change at run time; window and sample_period only by a new
   /// monitor (they size the buffer). Throws ConfigError (nothing changed) naming the key otherwise.
   void setOptions(const GapMonitorOptions& options);
 
-  /// Whether an evaluation is due: enough data, and `period` since the last one (in stamps).
+  /// Whether an evaluation is due. Evaluations fall on the stamps k * period (k integer) once min_span
+  /// of data is in, each as soon as every stream covers its stamp — or, if a stream stops, once the
+  /// state is `kStreamTimeout` past it. So the same data give the same snapshots, live or from a bag,
+  /// however the messages interleave.
   bool due() const;
-  /// Replays the window and grades each subsystem. Never throws for data: a window the replays cannot
+  /// The window ending at the next due stamp; moves the next stamp on by one period (call while due()).
+  MonitorSnapshot snapshot();
+  static constexpr double kStreamTimeout = 0.5;  ///< [s]
+  /// Replays the snapshot and grades each subsystem. Never throws for data: a window the replays cannot
   /// use gives every subsystem kStale with the reason.
-  MonitorStatus evaluate();
+  MonitorStatus evaluate(const MonitorSnapshot& snapshot);
+  MonitorStatus evaluate() { return evaluate(snapshot()); }
   /// The window as a log, for the full diagnosis (lk_gap's code) on demand.
   GapLog windowLog() const;
 
  private:
   SimConfig nominal_;
+  mutable std::mutex options_mutex_;
   GapMonitorOptions options_;
   MonitorWindow window_;
-  double last_evaluation_ = -1e300;
+  double next_stamp_ = std::nan("");  ///< the next evaluation's stamp (NaN: not yet known)
   double reference_stamp_ = -1e300;
-  std::size_t restarts_seen_ = 0;
+  std::size_t restarts_seen_ = 0;     ///< restarts the reference knows of
+  std::size_t snapshot_restarts_ = 0; ///< restarts next_stamp_ knows of
   std::map<std::string, double> reference_;
 };
 

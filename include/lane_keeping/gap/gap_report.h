@@ -154,6 +154,8 @@ struct GapReport {
 /// `path` is the file to write; if it names an existing directory, DIR/report.json is written.
 /// Non-finite numbers (NaN, +-Inf) are written as JSON null (read back as NaN). Layout: gap_report.cpp.
 void writeGapReportJson(const std::string& path, const GapReport& report);
+/// The text writeGapReportJson writes (report.json), e.g. for a service response.
+std::string gapReportJson(const GapReport& report);
 /// Reads it back (tests, the benchmark scorer). Accepts the file or its directory. Throws InputError
 /// naming the file and the JSON path (e.g. "$.verdict.effect: missing") if a DESIGN §5 key is absent
 /// or has the wrong type; fields beyond DESIGN §5 default when absent.

@@ -50,10 +50,13 @@ class MonitorWindow {
   double span() const;    ///< newest - oldest state stamp held
   std::size_t stateSamples() const { return states_.size(); }
 
-  /// The rows of the window in [latest - length, latest] that every present stream covers.
-  /// Throws InputError (via GapLog checks downstream) only through the caller; here an empty or short
-  /// window gives a short log — the caller decides whether it is enough.
-  GapLog log(const std::string& source) const;
+  /// The newest stamp every stream that has sent anything covers (NaN when empty).
+  double coveredUntil() const;
+  /// The state rows in [until - length, until] that every present stream covers (until may lie up to
+  /// kSlack before latest()). A short window gives a short log: the caller decides if it is enough.
+  GapLog log(const std::string& source, double until) const;
+  GapLog log(const std::string& source) const { return log(source, latest()); }
+  static constexpr double kSlack = 2.0;  ///< [s] held beyond the window
 
   struct Counts {
     std::size_t rejected = 0;   ///< non-finite values or stamps not after the last of their stream

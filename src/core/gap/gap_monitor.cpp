@@ -113,12 +113,18 @@ std::string fixed(double value, int digits = 4) {
 GapMonitor::GapMonitor(SimConfig nominal, GapMonitorOptions options)
     : nominal_(std::move(nominal)),
       options_(validated(options)),
-      window_(options_.window, options_.sample_period, std::max(1.0, 2.0 * options_.sample_period)) {
+      window_(options.window, options.sample_period, std::max(1.0, 2.0 * options.sample_period)) {
   nominal_.validate();
+}
+
+GapMonitorOptions GapMonitor::options() const {
+  std::lock_guard<std::mutex> lock(options_mutex_);
+  return options_;
 }
 
 void GapMonitor::setOptions(const GapMonitorOptions& options) {
   options.validate();
+  std::lock_guard<std::mutex> lock(options_mutex_);
   std::vector<ConfigProblem> problems;
   if (options.window != options_.window) {
     problems.push_back({"window", "", "cannot change while running (it sizes the buffer): restart the monitor"});
@@ -127,22 +133,45 @@ void GapMonitor::setOptions(const GapMonitorOptions& options) {
     problems.push_back({"sample_period", "", "cannot change while running (it thins the buffer): restart the monitor"});
   }
   if (!problems.empty()) throw ConfigError(problems);
-  if (options.reference_draws != options_.reference_draws) reference_stamp_ = -1e300;
   options_ = options;
 }
 
 bool GapMonitor::due() const {
   if (window_.empty()) return false;
-  return window_.span() >= options_.min_span && window_.latest() - last_evaluation_ >= options_.period * (1.0 - 1e-9);
+  const GapMonitorOptions o = options();
+  double next = next_stamp_;
+  if (std::isnan(next) || window_.counts().restarts != snapshot_restarts_) {
+    // The first stamp k * period with min_span of data before it.
+    const double oldest = window_.latest() - window_.span();
+    next = std::ceil((oldest + o.min_span) / o.period - 1e-9) * o.period;
+  }
+  const double covered = window_.coveredUntil();
+  return covered >= next || window_.latest() >= next + kStreamTimeout;
 }
 
 GapLog GapMonitor::windowLog() const { return window_.log("gap_monitor window"); }
 
-MonitorStatus GapMonitor::evaluate() {
+MonitorSnapshot GapMonitor::snapshot() {
+  const GapMonitorOptions o = options();
+  if (std::isnan(next_stamp_) || window_.counts().restarts != snapshot_restarts_) {
+    const double oldest = window_.latest() - window_.span();
+    next_stamp_ = std::ceil((oldest + o.min_span) / o.period - 1e-9) * o.period;
+    snapshot_restarts_ = window_.counts().restarts;
+  }
+  MonitorSnapshot snap;
+  snap.stamp = next_stamp_;
+  snap.log = window_.log("gap_monitor window", snap.stamp);
+  snap.restarts = window_.counts().restarts;
+  // The next stamp: one period on (k * period, computed from k so that rounding does not drift).
+  next_stamp_ = (std::round(next_stamp_ / o.period) + 1.0) * o.period;
+  return snap;
+}
+
+MonitorStatus GapMonitor::evaluate(const MonitorSnapshot& snapshot) {
   const auto wall_start = std::chrono::steady_clock::now();
+  const GapMonitorOptions o = options();  // one set of thresholds for the whole evaluation
   MonitorStatus status;
-  status.stamp = window_.latest();
-  last_evaluation_ = status.stamp;
+  status.stamp = snapshot.stamp;
   for (const std::string& name : subsystemNames()) {
     MonitorSubsystem s;
     s.name = name;
@@ -168,12 +197,12 @@ MonitorStatus GapMonitor::evaluate() {
     }
     return finish();
   };
-  if (window_.counts().restarts != restarts_seen_) {
-    restarts_seen_ = window_.counts().restarts;
+  if (snapshot.restarts != restarts_seen_) {
+    restarts_seen_ = snapshot.restarts;
     reference_stamp_ = -1e300;  // a new run: its noise and manoeuvre are not the last one's
     reference_.clear();
   }
-  GapLog log = windowLog();
+  GapLog log = snapshot.log;
   status.notes = log.notes;
   if (log.size() < 20) return stale("only " + std::to_string(log.size()) + " complete samples in the window");
   status.window_start = log.t.front();
@@ -192,13 +221,14 @@ MonitorStatus GapMonitor::evaluate() {
     }
     const std::set<std::string> available = availableSubsystems(runs);
     if (available.empty()) return stale("the window feeds no subsystem's replay");
-    const std::vector<Dataset> data = wholeLogs(runs, options_.start_margin);
+    const std::vector<Dataset> data = wholeLogs(runs, o.start_margin);
     const ReplayOptions replay_options;
     Evaluation ev = diagnosis::evaluate(nullptr, data, available, replay_options);
 
-    if (options_.reference_draws > 0 &&
-        (reference_.empty() || status.stamp - reference_stamp_ >= options_.reference_every * (1.0 - 1e-9))) {
-      const NoiseNull null = noiseNull({}, data, available, replay_options, options_.reference_draws, 1);
+    if (o.reference_draws == 0) reference_.clear();
+    if (o.reference_draws > 0 &&
+        (reference_.empty() || status.stamp - reference_stamp_ >= o.reference_every * (1.0 - 1e-9))) {
+      const NoiseNull null = noiseNull({}, data, available, replay_options, o.reference_draws, 1);
       if (null.draws() > 0) {
         reference_ = null.largestHeldExcess();
         reference_stamp_ = status.stamp;
@@ -224,17 +254,17 @@ MonitorStatus GapMonitor::evaluate() {
       s.reference = score.reference;
       s.net = netExcess(score);
       s.diverged_intervals = score.diverged_intervals;
-      s.judged = score.floor <= options_.max_floor;
+      s.judged = score.floor <= o.max_floor;
       if (!s.judged) {
         s.level = MonitorLevel::kStale;
         s.message = "no verdict: " + join(s.outputs) + " barely move in the window (noise floor " + fixed(score.floor, 2) +
-                    " of their RMS, above " + fixed(options_.max_floor, 2) + ")";
+                    " of their RMS, above " + fixed(o.max_floor, 2) + ")";
         continue;
       }
       s.level = grade(s.net, options_);
       s.message = std::string(monitorLevelName(s.level)) + ": net excess " + fixed(s.net) + " over " +
-                  fixed(status.window_end - status.window_start, 1) + " s (warn " + fixed(options_.warn_excess) +
-                  ", error " + fixed(options_.error_excess) + ")";
+                  fixed(status.window_end - status.window_start, 1) + " s (warn " + fixed(o.warn_excess) +
+                  ", error " + fixed(o.error_excess) + ")";
       if (s.diverged_intervals > 0) {
         s.message += "; " + std::to_string(s.diverged_intervals) + " shooting intervals left the model's domain";
       }

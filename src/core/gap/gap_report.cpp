@@ -277,9 +277,11 @@ const std::vector<std::string>& candidateEffectNames() {
   return names;
 }
 
+std::string gapReportJson(const GapReport& report) { return toJson(report).dump(2) + "\n"; }
+
 void writeGapReportJson(const std::string& path_or_dir, const GapReport& report) {
   const std::string path = resolvePath(path_or_dir);
-  const std::string text = toJson(report).dump(2) + "\n";
+  const std::string text = gapReportJson(report);
   // Write to a temporary file and rename, so a reader never sees half a report.
   const std::string temp = path + ".tmp";
   {

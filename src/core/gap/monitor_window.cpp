@@ -115,20 +115,32 @@ void MonitorWindow::trim() {
   if (states_.empty()) return;
   const double newest = std::max({states_.back().t, desired_.empty() ? -INFINITY : desired_.back().first,
                                   torque_.empty() ? -INFINITY : torque_.back().first});
-  const double keep_from = newest - length_;
+  // A window ending at a stamp up to kSlack before the newest sample can still be assembled (the
+  // monitor evaluates once every stream covers a boundary, so the state may run ahead of it).
+  const double keep_from = newest - length_ - kSlack;
   while (states_.size() > 1 && states_.front().t < keep_from) states_.pop_front();
   const double commands_from = states_.front().t - sample_period_;
   while (desired_.size() > 2 && desired_[1].first <= commands_from) desired_.pop_front();
   while (torque_.size() > 2 && torque_[1].first <= commands_from) torque_.pop_front();
 }
 
-GapLog MonitorWindow::log(const std::string& source) const {
+double MonitorWindow::coveredUntil() const {
+  if (states_.empty()) return std::numeric_limits<double>::quiet_NaN();
+  double covered = states_.back().t;
+  if (!desired_.empty()) covered = std::min(covered, desired_.back().first);
+  if (!torque_.empty()) covered = std::min(covered, torque_.back().first);
+  return covered;
+}
+
+GapLog MonitorWindow::log(const std::string& source, double until) const {
   GapLog log;
   log.source = source;
   const bool with_desired = !desired_.empty(), with_torque = !torque_.empty();
   std::size_t desired_cursor = 0, torque_cursor = 0;
   counts_.uncovered = 0;
   for (const MonitorStateSample& s : states_) {
+    if (s.t > until) break;
+    if (s.t < until - length_) continue;
     double delta_des = 0.0, torque = s.torque_applied;
     if ((with_desired && !interpolate(desired_, s.t, &desired_cursor, &delta_des)) ||
         (with_torque && !interpolate(torque_, s.t, &torque_cursor, &torque))) {
@@ -147,7 +159,7 @@ GapLog MonitorWindow::log(const std::string& source) const {
     if (with_desired) log.delta_des.push_back(delta_des);
     log.torque.push_back(torque);
   }
-  log.rows_read = states_.size();
+  log.rows_read = log.t.size() + counts_.uncovered;
   if (!with_torque && !log.t.empty()) {
     log.notes.push_back("no steering torque command received: the torque column is the torque acting on the wheel "
                         "(vehicle_state), which equals the command unless delays.torque_to_plant > 0");
