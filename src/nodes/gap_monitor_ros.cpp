@@ -108,10 +108,16 @@ GapMonitorRos::GapMonitorRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::strin
 
   // Subscriber queues hold a few seconds of a 1 kHz loop: the callbacks are short, but a loaded
   // machine may still delay them, and a dropped message would only cost the monitor a gap.
-  const std::uint32_t queue = 10000;
-  state_sub_ = nh_.subscribe(topics::kVehicleState, queue, &GapMonitorRos::onState, this, loopTransportHints());
-  desired_sub_ = nh_.subscribe(topics::kDesiredSteering, queue, &GapMonitorRos::onDesired, this, loopTransportHints());
-  torque_sub_ = nh_.subscribe(topics::kSteeringTorque, queue, &GapMonitorRos::onTorque, this, loopTransportHints());
+  // The input goes to a callback queue of its own, drained every kInputPeriod by a thread of its own:
+  // one wake-up per batch instead of one per message (at 3 x 1 kHz, a wake-up per message cost the
+  // nodelet 15-23 % of a core; the monitor needs no low latency). Without TCP_NODELAY, unlike the
+  // loop's subscribers, for the same reason. Queues hold a few seconds of a 10 kHz loop.
+  ros::NodeHandle input_nh(nh_);
+  input_nh.setCallbackQueue(&input_queue_);
+  const std::uint32_t queue = 50000;
+  state_sub_ = input_nh.subscribe(topics::kVehicleState, queue, &GapMonitorRos::onState, this);
+  desired_sub_ = input_nh.subscribe(topics::kDesiredSteering, queue, &GapMonitorRos::onDesired, this);
+  torque_sub_ = input_nh.subscribe(topics::kSteeringTorque, queue, &GapMonitorRos::onTorque, this);
   status_pub_ = nh_.advertise<GapStatus>(kGapStatusTopic, 10);
   marker_pub_ = nh_.advertise<visualization_msgs::Marker>(kGapMarkerTopic, 1, true);
 
@@ -160,6 +166,12 @@ GapMonitorRos::GapMonitorRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::strin
   diagnose_spinner_->start();
 
   worker_ = std::thread([this] { evaluationLoop(); });
+  input_thread_ = std::thread([this] {
+    while (!input_stopping_ && ros::ok()) {
+      std::this_thread::sleep_for(kInputPeriod);
+      input_queue_.callAvailable();
+    }
+  });
   ROS_INFO("%s: gap monitor on %s, %s, %s: window %g s every %g s at %g Hz, warn at net excess %g, error at %g\n%s",
            name_.c_str(), state_sub_.getTopic().c_str(), desired_sub_.getTopic().c_str(), torque_sub_.getTopic().c_str(),
            options.window, options.period, 1.0 / options.sample_period, options.warn_excess, options.error_excess,
@@ -167,6 +179,8 @@ GapMonitorRos::GapMonitorRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::strin
 }
 
 GapMonitorRos::~GapMonitorRos() {
+  input_stopping_ = true;
+  if (input_thread_.joinable()) input_thread_.join();
   {
     std::lock_guard<std::mutex> lock(queue_mutex_);
     stopping_ = true;
@@ -263,6 +277,7 @@ void GapMonitorRos::publish(const MonitorStatus& status) {
   msg.leading_band_high = status.band_f1;
   msg.leading_band_share = status.band_share;
   msg.evaluation_seconds = status.evaluation_seconds;
+  msg.evaluation_cpu_seconds = status.evaluation_cpu_seconds;
   msg.notes = status.notes;
   std::string worst;
   for (const MonitorSubsystem& s : status.subsystems) {

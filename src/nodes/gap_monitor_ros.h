@@ -15,6 +15,7 @@
 /// Private parameters: the GapMonitorOptions keys (window, period, sample_period, warn_excess, ...),
 /// config_namespace (the nominal configuration, default "config"), diagnose_sample_period, queue.
 #include <atomic>
+#include <chrono>
 #include <condition_variable>
 #include <deque>
 #include <memory>
@@ -68,6 +69,8 @@ class GapMonitorRos {
   MonitorStatus last_status_;
   bool have_status_ = false;
 
+  static constexpr std::chrono::milliseconds kInputPeriod{20};
+  ros::CallbackQueue input_queue_;
   ros::Subscriber state_sub_, desired_sub_, torque_sub_;
   RejectLog state_rejects_, desired_rejects_, torque_rejects_;
   ros::Publisher status_pub_, marker_pub_;
@@ -78,7 +81,9 @@ class GapMonitorRos {
   ros::ServiceServer diagnose_srv_;
   std::atomic<bool> diagnosing_{false};
 
-  std::thread worker_;  // last: joined first
+  std::atomic<bool> input_stopping_{false};
+  std::thread worker_;       // last: joined first
+  std::thread input_thread_;
 };
 
 }  // namespace lane_keeping

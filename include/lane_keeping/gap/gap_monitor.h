@@ -77,6 +77,7 @@ struct MonitorStatus {
   std::vector<MonitorSubsystem> subsystems;  ///< in subsystemNames() order
   bool reference_refreshed = false;
   double evaluation_seconds = 0.0;           ///< wall time of this evaluation
+  double evaluation_cpu_seconds = 0.0;       ///< CPU time of this evaluation (its thread)
   std::vector<std::string> notes;
 };
 

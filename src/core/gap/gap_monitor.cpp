@@ -6,6 +6,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <ctime>
 #include <set>
 #include <utility>
 
@@ -91,6 +92,13 @@ GapMonitorOptions validated(GapMonitorOptions options) {
   return options;
 }
 
+/// CPU time of the calling thread [s] (an evaluation's own cost, whatever else the machine runs).
+double threadCpuSeconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
 std::string join(const std::vector<std::string>& names) {
   std::string out;
   for (const auto& name : names) out += (out.empty() ? "" : ", ") + name;
@@ -169,6 +177,7 @@ MonitorSnapshot GapMonitor::snapshot() {
 
 MonitorStatus GapMonitor::evaluate(const MonitorSnapshot& snapshot) {
   const auto wall_start = std::chrono::steady_clock::now();
+  const double cpu_start = threadCpuSeconds();
   const GapMonitorOptions o = options();  // one set of thresholds for the whole evaluation
   MonitorStatus status;
   status.stamp = snapshot.stamp;
@@ -188,6 +197,7 @@ MonitorStatus GapMonitor::evaluate(const MonitorSnapshot& snapshot) {
     if (!any_available) status.level = MonitorLevel::kStale;
     status.evaluation_seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
+    status.evaluation_cpu_seconds = threadCpuSeconds() - cpu_start;
     return status;
   };
   auto stale = [&](const std::string& why) {
