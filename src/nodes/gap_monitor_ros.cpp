@@ -302,13 +302,18 @@ void GapMonitorRos::publish(const MonitorStatus& status) {
 
   visualization_msgs::Marker marker;
   marker.header.frame_id = frames::kBaseLink;
-  marker.header.stamp = msg.header.stamp;
+  // Stamp 0: drawn at the car's latest pose (the evaluation's stamp lies a period or more behind it).
+  marker.header.stamp = ros::Time(0);
   marker.ns = "gap_monitor";
   marker.type = visualization_msgs::Marker::TEXT_VIEW_FACING;
   marker.action = visualization_msgs::Marker::ADD;
-  marker.pose.position.z = 3.0;
+  // Below the lane in rviz's top-down view (the plant's own text sits above it), centred where the
+  // default view centres (6 m ahead of G).
+  marker.pose.position.x = 6.0;
+  marker.pose.position.y = -3.5;
+  marker.pose.position.z = 1.0;
   marker.pose.orientation.w = 1.0;
-  marker.scale.z = 0.8;
+  marker.scale.z = 0.5;
   marker.color.a = 1.0;
   switch (status.level) {
     case MonitorLevel::kOk: marker.color.g = 0.9; break;
