@@ -31,7 +31,7 @@
 namespace lane_keeping {
 
 /// The record of one scheduled change (what the summary lists and msg/ParameterChange.msg carries).
-struct ParameterChange {
+struct ScheduledChange {
   Nanoseconds stamp = 0;   ///< effective time [ns], on the owner's grid
   std::string key;         ///< full dotted configuration key
   std::string old_value;   ///< in force just before `stamp` (as the configuration prints it)
@@ -46,12 +46,12 @@ struct ParameterChange {
 };
 
 /// Sorted by stamp, then key (stable): the order a summary lists them in, whatever runner made them.
-void sortForSummary(std::vector<ParameterChange>& changes);
+void sortForSummary(std::vector<ScheduledChange>& changes);
 
 class ChangeSchedule {
  public:
   struct Entry {
-    ParameterChange change;
+    ScheduledChange change;
     std::shared_ptr<const SimConfig> after;  ///< the configuration with this change and every one before it
     Nanoseconds order = 0;                   ///< requested time [ns] (not before `earliest`): the order of checks
     int group = 0;                           ///< changes added together share a group
@@ -67,13 +67,13 @@ class ChangeSchedule {
   /// Adds assignments ("key" -> "value" text) requested for time t [s] that are checked and take
   /// effect together (e.g. both tau2 delays), none before `earliest` [ns] (a running component's next
   /// sample). Returns their records. Throws ConfigError naming the key and why; then nothing is added.
-  std::vector<ParameterChange> add(double t, const std::vector<std::pair<std::string, std::string>>& assignments,
+  std::vector<ScheduledChange> add(double t, const std::vector<std::pair<std::string, std::string>>& assignments,
                                    const std::string& origin, Nanoseconds earliest = 0);
 
   bool empty() const { return entries_.empty(); }
   const std::vector<Entry>& entries() const { return entries_; }
   /// Every record, in the order of the checks.
-  std::vector<ParameterChange> changes() const;
+  std::vector<ScheduledChange> changes() const;
   /// The configuration before any change.
   const SimConfig& initial() const { return initial_; }
   /// The configuration the run starts with: initial() with the changes at stamp 0.

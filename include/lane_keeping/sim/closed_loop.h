@@ -21,7 +21,7 @@ struct RunResult {
   std::vector<LogRow> rows;
   long plant_steps = 0;
   /// The runtime changes that took effect (stamped no later than the end), in the schedule's order.
-  std::vector<ParameterChange> changes;
+  std::vector<ScheduledChange> changes;
   bool diverged() const { return status == Status::kDiverged; }
 };
 

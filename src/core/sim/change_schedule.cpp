@@ -54,17 +54,17 @@ std::string requestText(double t, const std::vector<std::pair<std::string, std::
 
 }  // namespace
 
-std::string ParameterChange::argument() const {
+std::string ScheduledChange::argument() const {
   return formatNumber(nanosecondsToSeconds(stamp)) + ":" + key + "=" + new_value;
 }
 
-std::string ParameterChange::describe() const {
+std::string ScheduledChange::describe() const {
   return "t = " + formatNumber(nanosecondsToSeconds(stamp)) + " s: " + key + " " + old_value + " -> " + new_value +
          " (" + roleName(owner) + ")";
 }
 
-void sortForSummary(std::vector<ParameterChange>& changes) {
-  std::stable_sort(changes.begin(), changes.end(), [](const ParameterChange& a, const ParameterChange& b) {
+void sortForSummary(std::vector<ScheduledChange>& changes) {
+  std::stable_sort(changes.begin(), changes.end(), [](const ScheduledChange& a, const ScheduledChange& b) {
     return a.stamp != b.stamp ? a.stamp < b.stamp : a.key < b.key;
   });
 }
@@ -153,7 +153,7 @@ void ChangeSchedule::recheck(std::vector<Entry>& entries, std::size_t first) con
   }
 }
 
-std::vector<ParameterChange> ChangeSchedule::add(double t,
+std::vector<ScheduledChange> ChangeSchedule::add(double t,
                                                  const std::vector<std::pair<std::string, std::string>>& assignments,
                                                  const std::string& origin, Nanoseconds earliest) {
   if (assignments.empty()) return {};
@@ -217,13 +217,13 @@ std::vector<ParameterChange> ChangeSchedule::add(double t,
   }
   entries_ = std::move(updated);
   ++next_group_;
-  std::vector<ParameterChange> records;
+  std::vector<ScheduledChange> records;
   for (const Entry& e : group) records.push_back(e.change);
   return records;
 }
 
-std::vector<ParameterChange> ChangeSchedule::changes() const {
-  std::vector<ParameterChange> out;
+std::vector<ScheduledChange> ChangeSchedule::changes() const {
+  std::vector<ScheduledChange> out;
   for (const Entry& e : entries_) out.push_back(e.change);
   return out;
 }

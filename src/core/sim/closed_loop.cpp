@@ -71,7 +71,7 @@ RunResult runLoop(const ChangeSchedule& changes, Nanoseconds end, const std::fun
   }
   const Nanoseconds reached = plant.plant().time();
   RunResult result = plant.takeResult();
-  for (const ParameterChange& change : changes.changes()) {
+  for (const ScheduledChange& change : changes.changes()) {
     if (change.stamp <= reached) result.changes.push_back(change);
   }
   return result;

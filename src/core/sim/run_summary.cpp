@@ -7,10 +7,10 @@
 
 namespace lane_keeping {
 
-std::vector<std::string> describeChanges(std::vector<ParameterChange> changes) {
+std::vector<std::string> describeChanges(std::vector<ScheduledChange> changes) {
   sortForSummary(changes);
   std::vector<std::string> lines;
-  for (const ParameterChange& change : changes) lines.push_back(change.describe());
+  for (const ScheduledChange& change : changes) lines.push_back(change.describe());
   return lines;
 }
 
