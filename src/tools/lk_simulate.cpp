@@ -87,7 +87,9 @@ int main(int argc, char** argv) {
       writeLogCsv(out_path, result.rows);
       std::ofstream config_out(out_path + ".config.yaml");
       config_out << "# effective configuration of " << out_path << "\n";
-      for (const auto& change : result.changes) {
+      std::vector<ScheduledChange> changes = result.changes;
+      sortForSummary(changes);
+      for (const auto& change : changes) {
         config_out << "# changed during the run (--change " << change.argument() << "): " << change.describe() << "\n";
       }
       config.print(config_out);
