@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Installs the Debian 12 packages lane_keeping needs (ROS 1 from Debian, Eigen, yaml-cpp, Ceres,
 # GoogleTest, matplotlib, Xvfb, Dask and pytest for lk_fleet; clang 16 with libFuzzer and the sanitizer runtimes
-# for the fuzz targets in fuzz/). Does nothing when everything is already installed.
+# for the fuzz targets in fuzz/; diagnostic_updater and rosdiagnostic for the gap monitor; dynamic_reconfigure for runtime tuning of the controllers, rosbash for rosrun). Does nothing when
+# everything is already installed.
 set -euo pipefail
 
 PACKAGES=(
@@ -10,6 +11,7 @@ PACKAGES=(
   libtf2-ros-dev libtf2-eigen-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   librosbag-dev python3-rosbag libnodeletlib-dev libnodeletlib-tools pluginlib-dev rviz
   libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs libdiagnostic-aggregator-tools rosdiagnostic
+  libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure rosbash
   libeigen3-dev libyaml-cpp-dev libceres-dev libgtest-dev nlohmann-json3-dev python3-matplotlib python3-numpy
   xvfb xauth imagemagick
   python3-distributed python3-dask python3-pytest python3-yaml

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/param_readers.h"
 
 namespace lane_keeping {
 namespace {
@@ -127,6 +128,35 @@ TrackingErrors toTrackingErrorsMsg(Nanoseconds stamp, const PathErrors& e) {
   m.lateral_error_rate = e.lateral_rate;
   m.heading_error_rate = e.heading_rate;
   return m;
+}
+
+ParameterChange toParameterChangeMsg(const ScheduledChange& change, const std::string& node) {
+  ParameterChange m;
+  setHeader(m.header, change.stamp, "");
+  m.node = node;
+  m.key = change.key;
+  m.old_value = change.old_value;
+  m.new_value = change.new_value;
+  m.origin = change.origin;
+  m.change = change.argument();
+  return m;
+}
+
+ScheduledChange fromParameterChangeMsg(const ParameterChange& m) {
+  ScheduledChange change;
+  change.stamp = toNanoseconds(m.header.stamp);
+  change.key = m.key;
+  change.old_value = m.old_value;
+  change.new_value = m.new_value;
+  change.origin = m.origin;
+  change.owner = changeOwner(m.key);
+  return change;
+}
+
+std::string yamlNumber(double value) {
+  if (std::isnan(value)) return ".nan";
+  if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
+  return formatNumber(value);
 }
 
 std::string nonFiniteField(const VehicleState& m) {

@@ -9,11 +9,13 @@
 
 #include "lane_keeping/DesiredSteering.h"
 #include "lane_keeping/MeasuredSteering.h"
+#include "lane_keeping/ParameterChange.h"
 #include "lane_keeping/SteeringTorque.h"
 #include "lane_keeping/TrackingErrors.h"
 #include "lane_keeping/VehicleState.h"
 #include "lane_keeping/common/time.h"
 #include "lane_keeping/control/path.h"
+#include "lane_keeping/sim/change_schedule.h"
 #include "lane_keeping/sim/signals.h"
 
 namespace lane_keeping {
@@ -41,6 +43,17 @@ SteeringTorque toSteeringTorqueMsg(Nanoseconds stamp, const TorqueCommand& torqu
 TorqueCommand fromSteeringTorqueMsg(const SteeringTorque& msg);
 
 TrackingErrors toTrackingErrorsMsg(Nanoseconds stamp, const PathErrors& errors);
+
+// ---- runtime changes --------------------------------------------------------------------------
+
+/// header.stamp = the change's stamp (exact), `node` = the ROS name of the node that applies it.
+ParameterChange toParameterChangeMsg(const ScheduledChange& change, const std::string& node);
+/// The core record; the owner follows from the key (change_owner.h). Throws ConfigError for a key no
+/// component owns.
+ScheduledChange fromParameterChangeMsg(const ParameterChange& msg);
+/// A number as YAML text for the configuration's reader: shortest round trip, and .nan / .inf / -.inf
+/// (which the reader then refuses by name) for the values plain text would not read back.
+std::string yamlNumber(double value);
 
 // ---- input checks -----------------------------------------------------------------------------
 

@@ -3,17 +3,25 @@
 /// measured steering angle, feeds the core SteeringActuatorStage (which applies tau2 on the stamps
 /// and samples at actuator.rate), and publishes every torque its inputs cover. Shared by the
 /// steering_actuator node and nodelet.
+///
+/// Runtime tuning (docs/ros.md): the changes of ~changes it owns, and a dynamic_reconfigure server
+/// (cfg/SteeringActuator.cfg: p, tau2 = both input delays, apply_at) whose requests the core checks
+/// and schedules (node_changes.h); each change is announced on parameter_changes.
 #include <memory>
 #include <string>
 
+#include <boost/thread/recursive_mutex.hpp>
+#include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 
 #include "lane_keeping/DesiredSteeringArray.h"
 #include "lane_keeping/MeasuredSteeringArray.h"
+#include "lane_keeping/SteeringActuatorConfig.h"
 #include "lane_keeping/SteeringTorqueArray.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/sim/control_stages.h"
 #include "loop_io.h"
+#include "node_changes.h"
 
 namespace lane_keeping {
 
@@ -26,15 +34,24 @@ class SteeringActuatorRos {
   void onDesired(const DesiredSteeringArray::ConstPtr& msg);
   void onMeasured(const MeasuredSteeringArray::ConstPtr& msg);
   void produceAndFlush();
+  /// The run has started (first input): announce the configured changes.
+  void started();
+  /// dynamic_reconfigure: each changed value goes through the core's checks; a refused one is put back.
+  void onReconfigure(SteeringActuatorConfig& request, uint32_t level);
 
   ros::NodeHandle nh_, pnh_;
   std::string name_;
   SimConfig config_;
+  std::unique_ptr<NodeChanges> changes_;
   std::unique_ptr<SteeringActuatorStage> stage_;
   ros::Subscriber desired_sub_, measured_sub_;
   BatchPublisher<SteeringTorqueArray> torque_pub_;
   ros::WallTimer flush_timer_;
   RejectLog desired_rejects_, measured_rejects_;
+  bool started_ = false;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<SteeringActuatorConfig>> reconfigure_;
+  SteeringActuatorConfig shown_;  // what the server shows: values in force, or accepted and scheduled
 };
 
 }  // namespace lane_keeping

@@ -11,6 +11,9 @@ constexpr char kMeasuredSteering[] = "measured_steering";        ///< MeasuredSt
 constexpr char kDesiredSteering[] = "desired_steering";          ///< DesiredSteeringArray: tracker -> actuator, plant (log)
 constexpr char kSteeringTorque[] = "steering_torque";            ///< SteeringTorqueArray: actuator -> plant
 
+// Runtime tuning: every change of the configuration during a run, with the time it takes effect.
+constexpr char kParameterChanges[] = "parameter_changes";  ///< ParameterChange: each node -> the plant (summary), bags
+
 // What the plant reports.
 constexpr char kRunStatus[] = "run_status";            ///< RunStatus (latched): start and end of the run
 constexpr char kTrackingErrors[] = "tracking_errors";  ///< TrackingErrors: e_y, e_psi of the actual state

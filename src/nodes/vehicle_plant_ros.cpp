@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -57,15 +58,13 @@ VehiclePlantRos::VehiclePlantRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::s
 
   config_ = loadSimConfigFromParams(nh_, config_ns);
   checkLockstepFeasible(config_);  // a schedule that cannot advance fails here, naming the delays
-  const LoopSchedule schedule = loopScheduleOf(config_);
-  // How long vehicle_state samples may wait before they go out: the tracker needs the state at t
-  // only for its output at t + tau1, which the actuator needs at t + tau1 - tau2 and the plant one
-  // actuator sample later. Keep two periods of every grid as margin; with a small tau1 the state
-  // goes out every cycle. Batching never changes a value, only how many messages carry them.
-  const Nanoseconds slack = schedule.pose_delay + schedule.desired_delay -
-                            2 * (schedule.tracker_period + schedule.actuator_period + schedule.plant_step);
-  state_batch_span_ = std::max<Nanoseconds>(0, std::min(slack, secondsToNanoseconds(max_state_batch)));
-  session_ = std::make_unique<PlantSession>(config_, schedule, schedule.duration);
+  // ~changes: every entry checked (all nodes read the same list), the plant's own keys applied here.
+  changes_ = std::make_unique<NodeChanges>(nh_, pnh_, config_, LoopRole::kPlant, name_);
+  const LoopSchedule schedule = loopScheduleOf(changes_->start());
+  max_state_batch_ = secondsToNanoseconds(max_state_batch);
+  state_batch_span_ = stateBatchSpan();
+  session_ = std::make_unique<PlantSession>(changes_->start(), schedule, schedule.duration);
+  session_->scheduleChanges(changes_->schedule(), 1);
   if (vis.rate > 0) visualizer_ = std::make_unique<LaneVisualizer>(nh_, config_, session_->path(), vis);
 
   clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
@@ -76,6 +75,7 @@ VehiclePlantRos::VehiclePlantRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::s
                               loopTransportHints());
   desired_sub_ = nh_.subscribe(topics::kDesiredSteering, kLoopQueueSize, &VehiclePlantRos::onDesired, this,
                                loopTransportHints());
+  changes_sub_ = nh_.subscribe(topics::kParameterChanges, 1000, &VehiclePlantRos::onParameterChange, this);
   watchdog_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), [this](const ros::WallTimerEvent&) { onWatchdog(); });
   if (realtime_) {
     pace_timer_ = nh_.createWallTimer(ros::WallDuration(tick), [this](const ros::WallTimerEvent&) { advance(); },
@@ -87,6 +87,73 @@ VehiclePlantRos::VehiclePlantRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::s
            name_.c_str(), config_.simulation.name.c_str(), realtime_ ? "realtime" : "lockstep",
            formatSeconds(config_.simulation.step).c_str(), config_.simulation.duration, params.effective().c_str(),
            effective.str().c_str());
+}
+
+Nanoseconds VehiclePlantRos::stateBatchSpan() const {
+  // The tracker needs the state at t only for its output at t + tau1, which the actuator needs at
+  // t + tau1 + tau2 and the plant one actuator sample later: the state may wait up to tau1 + tau2
+  // less two periods of every grid as margin (with a small tau1 it goes out every cycle). Batching
+  // never changes a value, only how many messages carry them. With delays that change during the run
+  // the smallest of each counts, as soon as it is known (a shorter delay announced mid-run shrinks
+  // the span before it takes effect: the announcement precedes the change).
+  const SimConfig& start = changes_->start();
+  double tau1 = start.delays.pose_to_tracker, tau2 = start.delays.desired_steering_to_actuator;
+  for (const auto& entry : changes_->schedule().entries()) {
+    tau1 = std::min(tau1, entry.after->delays.pose_to_tracker);
+    tau2 = std::min(tau2, entry.after->delays.desired_steering_to_actuator);
+  }
+  for (const ScheduledChange& change : heard_) {
+    const double value = std::strtod(change.new_value.c_str(), nullptr);
+    if (change.key == "delays.pose_to_tracker") tau1 = std::min(tau1, value);
+    if (change.key == "delays.desired_steering_to_actuator") tau2 = std::min(tau2, value);
+  }
+  const LoopSchedule grids = loopScheduleOf(start);
+  const Nanoseconds slack = secondsToNanoseconds(tau1) + secondsToNanoseconds(tau2) -
+                            2 * (grids.tracker_period + grids.actuator_period + grids.plant_step);
+  return std::max<Nanoseconds>(0, std::min(slack, max_state_batch_));
+}
+
+void VehiclePlantRos::flushStateIfDue() {
+  // The tracker holds the state up to the last flush: it may wait while that is within the span.
+  if (state_pub_.pendingSamples() > 0 && (session_->stopped() || state_flushed_until_ < 0 ||
+                                          session_->plant().time() - state_flushed_until_ >= state_batch_span_)) {
+    if (state_pub_.flush()) state_flushed_until_ = session_->plant().time();
+  }
+}
+
+void VehiclePlantRos::onParameterChange(const ParameterChange::ConstPtr& msg) {
+  ScheduledChange change;
+  try {
+    change = fromParameterChangeMsg(*msg);
+  } catch (const LaneKeepingError& e) {
+    ROS_WARN("%s: ignored a message on %s from %s: %s", name_.c_str(), changes_sub_.getTopic().c_str(),
+             msg->node.c_str(), e.what());
+    return;
+  }
+  for (const ScheduledChange& known : heard_) {
+    if (known.stamp == change.stamp && known.key == change.key && known.new_value == change.new_value) return;
+  }
+  heard_.push_back(change);
+  if (change.key.rfind("delays.", 0) != 0 || phase_ == Phase::kEnded) return;
+  const Nanoseconds span = stateBatchSpan();
+  if (span < state_batch_span_) {
+    state_batch_span_ = span;
+    if (phase_ == Phase::kRunning) flushStateIfDue();
+  }
+}
+
+std::vector<ScheduledChange> VehiclePlantRos::changesUpTo(Nanoseconds reached) const {
+  std::vector<ScheduledChange> out;
+  auto add = [&](const ScheduledChange& change) {
+    if (change.stamp > reached) return;
+    for (const ScheduledChange& known : out) {
+      if (known.stamp == change.stamp && known.key == change.key && known.new_value == change.new_value) return;
+    }
+    out.push_back(change);
+  };
+  for (const ScheduledChange& change : changes_->schedule().changes()) add(change);
+  for (const ScheduledChange& change : heard_) add(change);
+  return out;
 }
 
 Nanoseconds VehiclePlantRos::wallElapsed() const {
@@ -168,6 +235,7 @@ void VehiclePlantRos::start() {
   status.wall_start = wall_start_.toSec();
   status_pub_.publish(status);
   if (realtime_) pace_timer_.start();
+  changes_->announceConfigured();
   advance();
 }
 
@@ -190,12 +258,9 @@ void VehiclePlantRos::advance() {
   const long steps = session_->advance(on_sample, realtime_ ? wallElapsed() : PlantSession::kNoLimit);
   // The actuator is on the critical path of the next cycle: its input goes out first.
   measured_pub_.flush();
-  // The tracker holds the state up to the last flush: it may wait while that is within the span.
-  if (state_pub_.pendingSamples() > 0 && (session_->stopped() || state_flushed_until_ < 0 ||
-                                          session_->plant().time() - state_flushed_until_ >= state_batch_span_)) {
-    if (state_pub_.flush()) state_flushed_until_ = session_->plant().time();
-  }
+  flushStateIfDue();
   publishClock(false);
+  changes_->takeEffective(session_->plant().time());
   if (visual_due) visualizer_->publish(visual_t, visual_state);
   const std::size_t rows = session_->result().rows.size();
   if (steps > 0 || rows != rows_seen_) {
@@ -273,7 +338,9 @@ void VehiclePlantRos::finish() {
   const double wall = (ros::WallTime::now() - wall_start_).toSec();
   const RunResult& result = session_->result();
   std::ostringstream text;
-  text << formatSummary(summarizeRun(config_, result));
+  RunSummary summary = summarizeRun(config_, result);
+  summary.changes = describeChanges(changesUpTo(session_->plant().time()));
+  text << formatSummary(summary);
   text << "wall time:              " << wall << " s (" << result.end_time / wall << "x real time, "
        << result.plant_steps << " plant steps, " << (realtime_ ? "realtime" : "lockstep") << " over ROS)\n";
   if (realtime_) {
@@ -311,6 +378,11 @@ std::string VehiclePlantRos::writeLog() {
     writeLogCsv(log_file_, rows);
     std::ofstream config_out(log_file_ + ".config.yaml");
     config_out << "# effective configuration of " << log_file_ << "\n";
+    std::vector<ScheduledChange> changes = changesUpTo(session_->plant().time());
+    sortForSummary(changes);
+    for (const auto& change : changes) {
+      config_out << "# changed during the run (--change " << change.argument() << "): " << change.describe() << "\n";
+    }
     config_.print(config_out);
     return "log:                    " + log_file_ + " (" + std::to_string(rows.size()) + " rows)\n";
   } catch (const LaneKeepingError& e) {

@@ -18,6 +18,11 @@
 ///     write the log, publish RunStatus. A stall (an input silent for input_timeout, or a
 ///     publisher gone) stops the run with a message naming the topic.
 /// time_mode = realtime: the same, but the plant never runs ahead of the wall clock.
+///
+/// Runtime tuning (docs/ros.md): the plant applies the changes of ~changes it owns (vehicle, steering,
+/// disturbance, tires, torque delay) at their stamps, without resetting its state; it hears every
+/// node's changes on parameter_changes, lists them in the summary, and keeps the vehicle_state batches
+/// short enough for the shortest tau1 + tau2 it knows of.
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -27,11 +32,13 @@
 
 #include "lane_keeping/DesiredSteeringArray.h"
 #include "lane_keeping/MeasuredSteeringArray.h"
+#include "lane_keeping/ParameterChange.h"
 #include "lane_keeping/SteeringTorqueArray.h"
 #include "lane_keeping/VehicleStateArray.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/sim/plant_session.h"
 #include "loop_io.h"
+#include "node_changes.h"
 #include "visualization.h"
 
 namespace lane_keeping {
@@ -48,6 +55,14 @@ class VehiclePlantRos {
 
   void onTorque(const SteeringTorqueArray::ConstPtr& msg);
   void onDesired(const DesiredSteeringArray::ConstPtr& msg);
+  void onParameterChange(const ParameterChange::ConstPtr& msg);
+  /// How long vehicle_state samples may wait before they go out (see the constructor) for the
+  /// shortest tau1 + tau2 known: the configuration, ~changes, and every change heard.
+  Nanoseconds stateBatchSpan() const;
+  /// Publishes the collected vehicle_state samples once the oldest has waited the span (or the run stopped).
+  void flushStateIfDue();
+  /// Every change known to have taken effect by `reached` [ns]: ~changes and those heard.
+  std::vector<ScheduledChange> changesUpTo(Nanoseconds reached) const;
   void onWatchdog();
   void start();
   /// Steps as far as the inputs (and in realtime the wall clock) allow, publishes, ends if done.
@@ -65,6 +80,8 @@ class VehiclePlantRos {
   ros::NodeHandle nh_, pnh_;
   std::string name_;
   SimConfig config_;
+  std::unique_ptr<NodeChanges> changes_;
+  std::vector<ScheduledChange> heard_;  // changes announced on parameter_changes (own ones included)
   std::unique_ptr<PlantSession> session_;
   std::unique_ptr<LaneVisualizer> visualizer_;
 
@@ -77,11 +94,12 @@ class VehiclePlantRos {
   Nanoseconds clock_period_ = 0;
   bool publish_clock_ = true;
   Nanoseconds state_batch_span_ = 0;  // vehicle_state samples may wait this long (see the constructor)
+  Nanoseconds max_state_batch_ = 0;   // the parameter max_state_batch
 
   BatchPublisher<VehicleStateArray> state_pub_;
   BatchPublisher<MeasuredSteeringArray> measured_pub_;
   ros::Publisher clock_pub_, status_pub_;
-  ros::Subscriber torque_sub_, desired_sub_;
+  ros::Subscriber torque_sub_, desired_sub_, changes_sub_;
   ros::WallTimer watchdog_timer_, pace_timer_, shutdown_timer_;
   RejectLog torque_rejects_, desired_rejects_;
 

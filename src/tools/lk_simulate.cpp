@@ -1,5 +1,6 @@
 // lk_simulate: in-process closed-loop simulation of the lane-keeping loop.
-//   lk_simulate --config FILE [--config FILE ...] [--set key=value ...] [--tire MODEL] [--out run.csv]
+//   lk_simulate --config FILE [--config FILE ...] [--set key=value ...] [--change T:key=value ...]
+//               [--tire MODEL] [--out run.csv]
 // Prints the run summary. Exit status: 0 completed, 3 diverged, 2 bad configuration, 1 other error.
 #include <chrono>
 #include <fstream>
@@ -9,16 +10,20 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/config/timed_change.h"
 #include "lane_keeping/sim/closed_loop.h"
 #include "lane_keeping/sim/run_summary.h"
 
 namespace {
 
 void usage(std::ostream& out) {
-  out << "usage: lk_simulate --config FILE [--config FILE ...] [--set key=value ...] [--tire MODEL]\n"
-         "                   [--out run.csv] [--print-config] [--quiet]\n"
+  out << "usage: lk_simulate --config FILE [--config FILE ...] [--set key=value ...] [--change T:key=value ...]\n"
+         "                   [--tire MODEL] [--out run.csv] [--print-config] [--quiet]\n"
          "  --config FILE     YAML overlay on the paper defaults (config/default.yaml lists every key)\n"
          "  --set key=value   override one key, e.g. --set tracker.k_y=0.15 --set delays.steering_angle_to_actuator=1.9e-3\n"
+         "  --change T:key=value  from simulated time T [s] on, key has value (runtime tuning; repeatable), e.g.\n"
+         "                    --change 10:steering.coulomb_friction=3; it takes effect at its component's first\n"
+         "                    sample at or after T; the summary lists each change (docs/ros.md, Runtime tuning)\n"
          "  --tire MODEL      shorthand for --set tire.front.model=MODEL --set tire.rear.model=MODEL\n"
          "  --out run.csv     write the log (DESIGN §5 columns + extras) and run.csv.config.yaml\n"
          "  --print-config    print the effective configuration and exit\n";
@@ -28,7 +33,7 @@ void usage(std::ostream& out) {
 
 int main(int argc, char** argv) {
   using namespace lane_keeping;
-  std::vector<std::string> files, sets;
+  std::vector<std::string> files, sets, change_texts;
   std::string out_path;
   bool print_config = false, quiet = false;
   for (int i = 1; i < argc; ++i) {
@@ -45,6 +50,8 @@ int main(int argc, char** argv) {
       files.push_back(value("--config"));
     } else if (arg == "--set") {
       sets.push_back(value("--set"));
+    } else if (arg == "--change") {
+      change_texts.push_back(value("--change"));
     } else if (arg == "--tire") {
       const std::string model = value("--tire");
       sets.push_back("tire.front.model=" + model);
@@ -70,7 +77,9 @@ int main(int argc, char** argv) {
       config.print(std::cout, true);
       return 0;
     }
-    const ClosedLoop loop(config);
+    std::vector<TimedChange> changes;
+    for (const auto& text : change_texts) changes.push_back(parseTimedChange(text));
+    const ClosedLoop loop(config, changes);
     const auto wall_start = std::chrono::steady_clock::now();
     const RunResult result = loop.run();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall_start).count();
@@ -78,6 +87,11 @@ int main(int argc, char** argv) {
       writeLogCsv(out_path, result.rows);
       std::ofstream config_out(out_path + ".config.yaml");
       config_out << "# effective configuration of " << out_path << "\n";
+      std::vector<ScheduledChange> changes = result.changes;
+      sortForSummary(changes);
+      for (const auto& change : changes) {
+        config_out << "# changed during the run (--change " << change.argument() << "): " << change.describe() << "\n";
+      }
       config.print(config_out);
     }
     if (!quiet) {

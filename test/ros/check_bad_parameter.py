@@ -3,7 +3,8 @@
 
 Runs roslaunch (against the test's master) with one bad parameter per case and expects it to end by
 itself within a time limit, its output naming the key. Cases: an out-of-range delay (three
-processes), a non-numeric gain (nodelets), and a misspelt key in an overlay file."""
+processes), a non-numeric gain (nodelets), a misspelt key in an overlay file, and bad runtime changes
+(~changes: a negative friction, a key fixed for a run)."""
 import os
 import subprocess
 import sys
@@ -53,6 +54,14 @@ class CheckBadParameter(unittest.TestCase):
             self.check('bad_key', ['overrides:=' + f.name], 'tracker.k_yy', 'not a known parameter')
         finally:
             os.remove(f.name)
+
+
+    def test_bad_runtime_change(self):
+        self.check('bad_change', ["changes:=['10:steering.coulomb_friction=-3']"], 'steering.coulomb_friction', '-3')
+
+    def test_runtime_change_of_a_fixed_key_nodelets(self):
+        self.check('bad_change_key', ['nodelets:=true', "changes:=['1:simulation.step=1e-5']"], 'simulation.step',
+                   'cannot change during a run')
 
 
 if __name__ == '__main__':

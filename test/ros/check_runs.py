@@ -7,6 +7,8 @@ Parameter ~runs: list of
   expect_state:       completed | diverged
   reference_configs:  config files for lk_simulate; with reference_sets, the in-process run to compare with
   reference_sets:     --set key=value list
+  reference_changes:  --change T:key=value list (runtime changes, the same the run was given)
+  summary_changes:    the lines the summary's 'changes:' block must hold (as lk_simulate prints them)
   tolerance:          max |difference| of any logged value vs the reference (0: bit-identical)
   summary:            optional checks of the printed summary: steering_hz: [lo, hi], steering_trend,
                       lateral_trend, lateral_rate: [lo, hi], max_final_offset, message_contains
@@ -19,7 +21,8 @@ import unittest
 import rospy
 import rostest
 
-from lk_test_support import (STATE_NAMES, StatusWatcher, compare_logs, parse_summary, run_lk_simulate, temp_csv)
+from lk_test_support import (STATE_NAMES, StatusWatcher, compare_logs, parse_summary, run_lk_simulate,
+                             summary_changes, temp_csv)
 
 
 class CheckRuns(unittest.TestCase):
@@ -42,7 +45,8 @@ class CheckRuns(unittest.TestCase):
                 continue
             if 'reference_configs' in run:
                 reference = temp_csv('reference_' + ns)
-                code, out = run_lk_simulate(run['reference_configs'], run.get('reference_sets', []), reference)
+                code, out = run_lk_simulate(run['reference_configs'], run.get('reference_sets', []), reference,
+                                            run.get('reference_changes', []))
                 if code not in (0, 3):
                     problems.append('%s: lk_simulate failed (%d): %s' % (ns, code, out))
                     continue
@@ -54,6 +58,17 @@ class CheckRuns(unittest.TestCase):
                     problems.append('%s: ROS run differs from lk_simulate: %d vs %d rows, max |difference| %g > %g; '
                                     'first: %s' % (ns, rows_ros, rows_ref, worst, tolerance, first))
                 os.remove(reference)
+                if 'summary_changes' in run:
+                    simulated = summary_changes(out)
+                    if simulated != run['summary_changes']:
+                        problems.append('%s: lk_simulate lists the changes %s, expected %s' %
+                                        (ns, simulated, run['summary_changes']))
+            if 'summary_changes' in run:
+                listed = summary_changes(status.summary)
+                rospy.loginfo('%s: the summary lists %d change(s): %s', ns, len(listed), listed)
+                if listed != run['summary_changes']:
+                    problems.append('%s: the summary lists the changes %s, expected %s' %
+                                    (ns, listed, run['summary_changes']))
             checks = run.get('summary', {})
             if checks:
                 got = parse_summary(status.summary)

@@ -81,6 +81,36 @@ TEST(MessageConversion, TrackingErrors) {
   EXPECT_EQ(m.header.stamp.toNSec(), 1000u);
 }
 
+TEST(MessageConversion, ParameterChangeRoundTripsAndReproduces) {
+  ScheduledChange change;
+  change.stamp = 10'000'100'000;
+  change.key = "steering.coulomb_friction";
+  change.old_value = "0";
+  change.new_value = "3";
+  change.owner = LoopRole::kPlant;
+  change.origin = "~changes";
+  const ParameterChange m = toParameterChangeMsg(change, "/lane_keeping/vehicle_plant");
+  EXPECT_EQ(m.header.stamp.sec, 10u);
+  EXPECT_EQ(m.header.stamp.nsec, 100'000u);
+  EXPECT_EQ(m.node, "/lane_keeping/vehicle_plant");
+  EXPECT_EQ(m.change, "10.0001:steering.coulomb_friction=3");  // the lk_simulate --change argument
+  const ScheduledChange back = fromParameterChangeMsg(m);
+  EXPECT_EQ(back.stamp, change.stamp);
+  EXPECT_EQ(back.owner, LoopRole::kPlant);
+  EXPECT_EQ(back.describe(), change.describe());
+  ParameterChange foreign = m;
+  foreign.key = "simulation.step";  // no component owns it
+  EXPECT_THROW(fromParameterChangeMsg(foreign), ConfigError);
+}
+
+TEST(MessageConversion, NumbersForTheConfigurationReader) {
+  EXPECT_EQ(yamlNumber(0.8), "0.8");
+  EXPECT_EQ(yamlNumber(1.9019505e-3), "0.0019019505");
+  EXPECT_EQ(yamlNumber(std::nan("")), ".nan");  // read as NaN, then refused by name
+  EXPECT_EQ(yamlNumber(std::numeric_limits<double>::infinity()), ".inf");
+  EXPECT_EQ(yamlNumber(-std::numeric_limits<double>::infinity()), "-.inf");
+}
+
 TEST(InputChecks, NonFiniteFieldsAreNamed) {
   VehicleState v;
   EXPECT_EQ(nonFiniteField(v), "");

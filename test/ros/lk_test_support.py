@@ -63,13 +63,16 @@ def wait_for(predicate, timeout, period=0.02):
     return predicate()
 
 
-def run_lk_simulate(configs, sets, out_csv):
-    """Runs the in-process loop on the same files; returns (exit code, stdout)."""
+def run_lk_simulate(configs, sets, out_csv, changes=()):
+    """Runs the in-process loop on the same files (and runtime changes, "T:key=value"); returns
+    (exit code, stdout)."""
     cmd = [lk_simulate_binary()]
     for c in configs:
         cmd += ['--config', c]
     for s in sets:
         cmd += ['--set', s]
+    for c in changes:
+        cmd += ['--change', c]
     cmd += ['--out', out_csv]
     proc = subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, universal_newlines=True)
     return proc.returncode, proc.stdout
@@ -109,6 +112,21 @@ def temp_csv(name):
 _STEERING = re.compile(r'steering mode \(d-d_des\):\s+([0-9.eE+-]+) Hz over (\d+) cycles, (\w+) \(growth rate ([0-9.eE+-]+)')
 _LATERAL_TREND = re.compile(r'lateral mode \(e_y\):.*?(decays|grows|steady|none)[ ,(]+(?:growth )?rate ([0-9.eE+-]+) 1/s')
 _FINAL = re.compile(r'final lateral offset:\s+([0-9.eE+-]+) m')
+
+
+def summary_changes(text):
+    """The lines of the summary's 'changes:' block ("t = 10 s: key old -> new (node)")."""
+    lines = text.splitlines()
+    out = []
+    for i, line in enumerate(lines):
+        if line.startswith('changes:'):
+            out.append(line[len('changes:'):].strip())
+            for more in lines[i + 1:]:
+                if not more.startswith(' ' * 10):
+                    break
+                out.append(more.strip())
+            break
+    return out
 
 
 def parse_summary(text):

@@ -25,7 +25,8 @@ class FlatParams {
   /// Overlays an already parsed YAML mapping.
   void overlayNode(const YAML::Node& root, const std::string& origin);
   /// Applies "key=value" (value parsed as YAML, so lists work). Throws ConfigError if malformed.
-  void overlayAssignment(const std::string& assignment);
+  /// `origin` is the entry's location in later messages ("--set", or a runtime change's own text).
+  void overlayAssignment(const std::string& assignment, const std::string& origin = "--set");
   /// Overlays another set's entries (keeping their locations), by the same replacement rule.
   void overlayFlat(const FlatParams& other);
   /// Removes every entry whose key starts with `prefix` (e.g. "log." for a section read elsewhere).

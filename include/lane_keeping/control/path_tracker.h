@@ -26,8 +26,12 @@ class PathTracker {
 
   const TrackerParams& params() const { return params_; }
   const Path& path() const { return *path_; }
+  /// New gains, bias or excitation from the next command on (a runtime change). The tracker has no
+  /// state of its own: the next command is the one a tracker built with `params` would give.
+  void setParams(const TrackerParams& params);
 
  private:
+  void buildExcitation();
   TrackerParams params_;
   std::shared_ptr<const Path> path_;
   std::vector<double> excitation_frequency_, excitation_phase_, excitation_amplitude_;

@@ -21,6 +21,10 @@ class SteeringActuator {
 
   double integral() const { return integral_; }
   const ActuatorParams& params() const { return params_; }
+  /// New gains from the next sample on (a runtime change). The integral z and the previous error
+  /// carry over: z is the integral of the error (eq 13), which the gains do not touch, so the torque
+  /// jumps by the gain change times the current error terms and nothing else.
+  void setParams(const ActuatorParams& params) { params_ = params; }
 
   /// The law of eq 12 for given error, error rate and integral (shared with the linearisation).
   static double torque(const ActuatorParams& p, double error, double error_rate, double integral) {

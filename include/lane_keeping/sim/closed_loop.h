@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/config/timed_change.h"
+#include "lane_keeping/sim/change_schedule.h"
 #include "lane_keeping/sim/log_row.h"
 
 namespace lane_keeping {
@@ -18,6 +20,8 @@ struct RunResult {
   double end_time = 0.0;   ///< simulated time reached [s]
   std::vector<LogRow> rows;
   long plant_steps = 0;
+  /// The runtime changes that took effect (stamped no later than the end), in the schedule's order.
+  std::vector<ScheduledChange> changes;
   bool diverged() const { return status == Status::kDiverged; }
 };
 
@@ -26,14 +30,20 @@ class ClosedLoop {
   /// Validates the configuration (throws ConfigError) and checks that the lockstep schedule can
   /// advance (throws ScheduleError naming the delays otherwise).
   explicit ClosedLoop(SimConfig config);
+  /// With changes during the run ("T:key=value", lk_simulate --change): each is checked by the
+  /// schedule's rules (change_schedule.h; throws ConfigError naming the change and the key).
+  ClosedLoop(SimConfig config, const std::vector<TimedChange>& changes);
 
   /// Runs for simulation.duration. `on_row` sees each log row as it is recorded.
   RunResult run(const std::function<void(const LogRow&)>& on_row = nullptr) const;
 
+  /// The configuration before any change.
   const SimConfig& config() const { return config_; }
+  const ChangeSchedule& changes() const { return changes_; }
 
  private:
   SimConfig config_;
+  ChangeSchedule changes_;
 };
 
 /// Throws ScheduleError if the loop's delays give the lockstep schedule no way to advance (e.g. a

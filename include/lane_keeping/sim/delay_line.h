@@ -13,6 +13,15 @@
 ///
 /// Stamps are integer nanoseconds and the interpolation weight is computed from them, so the
 /// in-process runner and the ROS nodes read bit-identical values.
+///
+/// A delay that changes during a run (runtime tuning, change_schedule.h) is a right-continuous step
+/// function of the consumer's time: tau(t) = tau_0 before the first change, tau_i from its time t_i
+/// on, and the value for time t is the input at t - tau(t). A longer delay therefore re-reads older
+/// input (the output repeats a stretch of its input), a shorter one skips ahead (a stretch is never
+/// read); coverage and interpolation are those above with tau(t) in place of tau. Reads that go back
+/// in time need the older samples: the line keeps what every known future delay needs, and, for
+/// changes not known in advance, what a delay up to retainFor()'s bound needs.
+#include <algorithm>
 #include <vector>
 #include <stdexcept>
 #include <string>
@@ -53,7 +62,32 @@ class DelayLine {
   }
 
   bool empty() const { return size_ == 0; }
+  /// The delay in force at the latest time discardBefore() was called with (the initial one before).
   Nanoseconds delay() const { return delay_; }
+  /// The delay for consumer time t [ns]: the last change at or before t, else the current delay.
+  Nanoseconds delayAt(Nanoseconds t) const {
+    for (std::size_t i = changes_.size(); i-- > 0;) {
+      if (changes_[i].from <= t) return changes_[i].delay;
+    }
+    return delay_;
+  }
+  /// From consumer time `from` [ns] on, the delay is `delay` [ns]; a later call for the same time
+  /// wins. `from` must not precede a time already read (the consumer's next time or later).
+  void scheduleDelay(Nanoseconds from, Nanoseconds delay) {
+    if (delay < 0) throw ConfigError(name_ + ": negative delay");
+    const auto at = std::upper_bound(changes_.begin(), changes_.end(), from,
+                                     [](Nanoseconds t, const DelayChange& c) { return t < c.from; });
+    changes_.insert(at, DelayChange{from, delay});
+  }
+  /// Forgets the delay changes scheduled at `from` [ns] or later (before they are scheduled again).
+  void clearDelaysFrom(Nanoseconds from) {
+    changes_.erase(std::remove_if(changes_.begin(), changes_.end(),
+                                  [from](const DelayChange& c) { return c.from >= from; }),
+                   changes_.end());
+  }
+  /// Keeps the input history a delay up to `max_delay` [ns] needs, for delay changes not known in
+  /// advance (0, the default: only what the current and the scheduled delays need).
+  void retainFor(Nanoseconds max_delay) { retention_ = max_delay; }
   Nanoseconds latestStamp() const { return size_ == 0 ? -1 : back().stamp; }
   const std::string& name() const { return name_; }
   std::size_t size() const { return size_; }
@@ -61,7 +95,7 @@ class DelayLine {
   /// True when the value for consumer time t is final.
   bool covers(Nanoseconds t) const {
     if (size_ == 0) return false;
-    const Nanoseconds query = t - delay_;
+    const Nanoseconds query = t - delayAt(t);
     const Nanoseconds latest = back().stamp;
     if (query <= latest) return true;
     return hold_ == Hold::kZeroOrder && latest + producer_period_ > query;
@@ -71,14 +105,26 @@ class DelayLine {
   S at(Nanoseconds t) const {
     if (!covers(t)) {
       throw ScheduleError(name_ + ": value for t = " + std::to_string(t) + " ns needs a sample stamped " +
-                          std::to_string(t - delay_) + " ns, latest is " + std::to_string(latestStamp()) + " ns");
+                          std::to_string(t - delayAt(t)) + " ns, latest is " + std::to_string(latestStamp()) + " ns");
     }
-    const Nanoseconds query = t - delay_;
+    const Nanoseconds query = t - delayAt(t);
     if (query <= item(0).stamp) return item(0).value;
-    // Consumers prune what they have read (discardBefore), so the samples around the query sit at
-    // the front even when the producer runs far ahead (the tracker, by tau1): scan from the front.
-    std::size_t i = 0;
-    while (i + 1 < size_ && item(i + 1).stamp <= query) ++i;  // last stamp <= query
+    // Consumers prune what they have read (discardBefore), so the samples around the query usually
+    // sit at the front even when the producer runs far ahead (the tracker, by tau1); with a retained
+    // history (retainFor, or a longer delay to come) they sit further in: binary search then.
+    std::size_t i = 0;  // last stamp <= query
+    if (size_ >= 2 && item(1).stamp <= query) {
+      std::size_t lo = 1, hi = size_ - 1;
+      while (lo < hi) {
+        const std::size_t mid = lo + (hi - lo + 1) / 2;
+        if (item(mid).stamp <= query) {
+          lo = mid;
+        } else {
+          hi = mid - 1;
+        }
+      }
+      i = lo;
+    }
     if (item(i).stamp == query || hold_ == Hold::kZeroOrder || i + 1 == size_) {
       return item(i).value;
     }
@@ -90,7 +136,19 @@ class DelayLine {
 
   /// Drops samples no read at consumer time >= t can need (keeps the one at or before t - delay).
   void discardBefore(Nanoseconds t) {
-    const Nanoseconds query = t - delay_;
+    // Keep the sample at or before t - d for d the longest delay a read at t or later may use: the
+    // delay at t, every delay scheduled after t, and the retained bound. Changes at or before t
+    // become the current delay (no read comes before t any more).
+    Nanoseconds longest = delay_;
+    if (!changes_.empty()) {
+      std::size_t passed = 0;
+      while (passed < changes_.size() && changes_[passed].from <= t) delay_ = changes_[passed++].delay;
+      changes_.erase(changes_.begin(), changes_.begin() + static_cast<std::ptrdiff_t>(passed));
+      longest = delay_;
+      for (const DelayChange& c : changes_) longest = std::max(longest, c.delay);
+    }
+    longest = std::max(longest, retention_);
+    const Nanoseconds query = t - longest;
     while (size_ >= 2 && item(1).stamp <= query) {
       head_ = (head_ + 1) & mask_;
       --size_;
@@ -110,8 +168,15 @@ class DelayLine {
     mask_ = ring_.size() - 1;
   }
 
+  struct DelayChange {
+    Nanoseconds from;   ///< consumer time [ns] from which it holds
+    Nanoseconds delay;  ///< [ns]
+  };
+
   std::string name_;
   Nanoseconds delay_;
+  std::vector<DelayChange> changes_;  // by `from`; after discardBefore(t), all later than t
+  Nanoseconds retention_ = 0;
   Hold hold_;
   Nanoseconds producer_period_;
   std::vector<Stamped<S>> ring_;

@@ -5,6 +5,7 @@
 /// with the same grids.
 #include "lane_keeping/common/time.h"
 #include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/sim/change_schedule.h"
 #include "lane_keeping/sim/control_stages.h"
 #include "lane_keeping/sim/delay_line.h"
 #include "lane_keeping/sim/vehicle_plant.h"
@@ -34,5 +35,12 @@ VehiclePlant createVehiclePlant(const SimConfig& config, const LoopSchedule& sch
 PathTrackingStage createPathTrackingStage(const SimConfig& config, const LoopSchedule& schedule);
 /// The PID steering actuator (Beregi eqs 12-16), with its two input delay lines (tau2).
 SteeringActuatorStage createSteeringActuatorStage(const SimConfig& config, const LoopSchedule& schedule);
+
+/// Hands a component the changes of `changes` it owns (change_owner.h) stamped at `from` [ns] or
+/// later, replacing those it holds from `from` on: the parameters and delays in force from each stamp.
+/// A component built from changes.start() already has the changes at stamp 0 (from = 1 skips them).
+void scheduleChanges(PathTrackingStage& stage, const ChangeSchedule& changes, Nanoseconds from);
+void scheduleChanges(SteeringActuatorStage& stage, const ChangeSchedule& changes, Nanoseconds from);
+void scheduleChanges(VehiclePlant& plant, const ChangeSchedule& changes, Nanoseconds from);
 
 }  // namespace lane_keeping

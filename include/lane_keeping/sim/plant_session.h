@@ -44,6 +44,11 @@ class PlantSession {
   /// @param end simulated time to stop at [ns]; @param record_rows false: keep no log (feasibility probes).
   PlantSession(const SimConfig& config, const LoopSchedule& schedule, Nanoseconds end, bool record_rows = true);
 
+  /// Hands the plant the changes of its keys (vehicle, steering, disturbance, tires, torque delay)
+  /// stamped at `from` [ns] or later (change_schedule.h); the session must have been built from
+  /// changes.start().
+  void scheduleChanges(const ChangeSchedule& changes, Nanoseconds from) { lane_keeping::scheduleChanges(plant_, changes, from); }
+
   /// Steps the plant while the torque covers the next step, the run has not stopped, and the step
   /// ends no later than `until` [ns] (wall-clock pacing). At every log time and at the end it checks
   /// for divergence (DivergenceMonitor::check), after every step the cheap check (checkStep).

@@ -28,7 +28,12 @@ struct RunSummary {
   bool left_lane = false;              ///< |e_y| exceeded half the lane width at some time
   OscillationEstimate lateral;         ///< of e_y
   OscillationEstimate steering;        ///< of delta - delta_des
+  /// The runtime changes that took effect, one line each (ScheduledChange::describe), by stamp then key.
+  std::vector<std::string> changes;
 };
+
+/// The summary lines of runtime changes: sorted by stamp then key (sortForSummary), described.
+std::vector<std::string> describeChanges(std::vector<ScheduledChange> changes);
 
 RunSummary summarizeRun(const SimConfig& config, const RunResult& result);
 /// Human-readable multi-line text.

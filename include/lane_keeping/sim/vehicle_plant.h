@@ -3,6 +3,12 @@
 /// fixed step, reading the steering torque through its delay line at the stage times (linear
 /// hold: t, t + h/2, t + h; zero-order hold: the value at t for the whole step). It may step only
 /// when the torque line covers those times — the lockstep rule (DESIGN §4).
+///
+/// Runtime changes (change_schedule.h): a model with new parameters and the same state layout takes
+/// over at a plant time; the state carries over (nothing jumps but what the parameters drive), the
+/// sample at that time and every step from it use the new model.
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "lane_keeping/sim/delay_line.h"
@@ -29,6 +35,13 @@ class VehiclePlant {
   void pushTorque(Nanoseconds stamp, double torque) { torque_line_.push(stamp, TorqueCommand{torque}); }
   /// One RK4 step. Throws ScheduleError if !readyToStep().
   void step();
+
+  /// From plant time `stamp` [ns] (after time()) on, integrate `model` and read the torque
+  /// `torque_delay` [ns] back. Throws ScheduleError if the model's state layout differs (the state
+  /// must carry over) or `stamp` is not after time().
+  void scheduleChange(Nanoseconds stamp, SingleTrackModel model, Nanoseconds torque_delay);
+  /// Forgets the changes scheduled at `from` [ns] or later.
+  void clearChangesFrom(Nanoseconds from);
 
   /// Everything about the vehicle at time() as its sensors report it (sensor_model.h: what the
   /// tracker and the log see): state, velocities, tire quantities, and the torque of the last RK4 stage
@@ -60,7 +73,13 @@ class VehiclePlant {
                                          : wheel();
   }
 
+  struct Pending {
+    Nanoseconds stamp;
+    SingleTrackModel model;
+  };
+
   SingleTrackModel model_;
+  std::vector<Pending> pending_;  // by stamp
   Eigen::VectorXd x_;
   Nanoseconds t_ = 0;
   Nanoseconds h_;

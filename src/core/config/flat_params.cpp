@@ -85,10 +85,10 @@ void FlatParams::overlayFlat(const FlatParams& other) {
   for (const auto& [key, entry] : other.entries()) setLeaf(key, Entry{YAML::Clone(entry.value), entry.location});
 }
 
-void FlatParams::overlayAssignment(const std::string& assignment) {
+void FlatParams::overlayAssignment(const std::string& assignment, const std::string& origin) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0) {
-    throw ConfigError("--set '" + assignment + "': expected key=value, e.g. --set tracker.k_y=0.15");
+    throw ConfigError(origin + " '" + assignment + "': expected key=value, e.g. --set tracker.k_y=0.15");
   }
   const std::string key = assignment.substr(0, eq);
   const std::string text = assignment.substr(eq + 1);
@@ -96,13 +96,13 @@ void FlatParams::overlayAssignment(const std::string& assignment) {
   try {
     value = YAML::Load(text);
   } catch (const YAML::ParserException& e) {
-    throw ConfigError("--set " + key + ": value '" + text + "' is not valid YAML: " + e.msg);
+    throw ConfigError(origin + " " + key + ": value '" + text + "' is not valid YAML: " + e.msg);
   }
   if (value.IsMap()) {
     YAML::Node wrapper;
     wrapper[key] = value;
     // Keys given in dotted form: rebuild the nesting so flatten() sees them.
-    flatten(value, key, "--set");
+    flatten(value, key, origin);
     return;
   }
   for (auto it = entries_.begin(); it != entries_.end();) {
@@ -112,7 +112,7 @@ void FlatParams::overlayAssignment(const std::string& assignment) {
       ++it;
     }
   }
-  entries_[key] = Entry{value, "--set"};
+  entries_[key] = Entry{value, origin};
 }
 
 const FlatParams::Entry* FlatParams::find(const std::string& key) const {

@@ -8,6 +8,18 @@ namespace lane_keeping {
 
 PathTracker::PathTracker(const TrackerParams& params, std::shared_ptr<const Path> path)
     : params_(params), path_(std::move(path)) {
+  buildExcitation();
+}
+
+void PathTracker::setParams(const TrackerParams& params) {
+  params_ = params;
+  buildExcitation();
+}
+
+void PathTracker::buildExcitation() {
+  excitation_frequency_.clear();
+  excitation_phase_.clear();
+  excitation_amplitude_.clear();
   if (params_.excitation_amplitude > 0.0) {
     // Log-spaced frequencies, random phases (seeded: reproducible), equal amplitudes scaled so that
     // the multisine's RMS is excitation_amplitude.

@@ -29,12 +29,17 @@ std::string deadlockMessage(const SimConfig& c, const VehiclePlant& plant, const
 /// The lockstep loop: the plant side (PlantSession) steps while its torque is in; the tracker and
 /// the actuator produce every sample their inputs cover. Returns the result; throws ScheduleError
 /// on deadlock.
-RunResult runLoop(const SimConfig& c, Nanoseconds end, const std::function<void(const LogRow&)>& on_row,
+RunResult runLoop(const ChangeSchedule& changes, Nanoseconds end, const std::function<void(const LogRow&)>& on_row,
                   bool record_rows) {
+  // Components start from the configuration with the changes at t = 0 and take the later ones.
+  const SimConfig& c = changes.start();
   const LoopSchedule s = loopScheduleOf(c);
   PlantSession plant(c, s, end, record_rows);
   PathTrackingStage tracker = createPathTrackingStage(c, s);
   SteeringActuatorStage actuator = createSteeringActuatorStage(c, s);
+  plant.scheduleChanges(changes, 1);
+  scheduleChanges(tracker, changes, 1);
+  scheduleChanges(actuator, changes, 1);
   const PlantSession::SampleCallback feed = [&](const VehiclePlant& p) {
     tracker.pushPose(p.time(), p.pose());
     actuator.pushMeasurement(p.time(), p.measurement());
@@ -64,7 +69,12 @@ RunResult runLoop(const SimConfig& c, Nanoseconds end, const std::function<void(
       throw ScheduleError(deadlockMessage(c, plant.plant(), actuator));
     }
   }
-  return plant.takeResult();
+  const Nanoseconds reached = plant.plant().time();
+  RunResult result = plant.takeResult();
+  for (const ScheduledChange& change : changes.changes()) {
+    if (change.stamp <= reached) result.changes.push_back(change);
+  }
+  return result;
 }
 
 }  // namespace
@@ -73,16 +83,20 @@ void checkLockstepFeasible(const SimConfig& config) {
   const LoopSchedule s = loopScheduleOf(config);
   // A deadlock shows within a few actuator periods; run that long without logging.
   const Nanoseconds probe = std::min<Nanoseconds>(s.duration, 4 * (s.actuator_period + s.tracker_period) + 20 * s.plant_step);
-  runLoop(config, probe, nullptr, false);
+  runLoop(ChangeSchedule(config), probe, nullptr, false);
 }
 
-ClosedLoop::ClosedLoop(SimConfig config) : config_(std::move(config)) {
+ClosedLoop::ClosedLoop(SimConfig config) : ClosedLoop(std::move(config), {}) {}
+
+ClosedLoop::ClosedLoop(SimConfig config, const std::vector<TimedChange>& changes)
+    : config_(std::move(config)), changes_(config_) {
   config_.validate();
   checkLockstepFeasible(config_);
+  changes_.addAll(changes, "--change");
 }
 
 RunResult ClosedLoop::run(const std::function<void(const LogRow&)>& on_row) const {
-  return runLoop(config_, loopScheduleOf(config_).duration, on_row, true);
+  return runLoop(changes_, loopScheduleOf(config_).duration, on_row, true);
 }
 
 }  // namespace lane_keeping

@@ -7,9 +7,17 @@
 
 namespace lane_keeping {
 
+std::vector<std::string> describeChanges(std::vector<ScheduledChange> changes) {
+  sortForSummary(changes);
+  std::vector<std::string> lines;
+  for (const ScheduledChange& change : changes) lines.push_back(change.describe());
+  return lines;
+}
+
 RunSummary summarizeRun(const SimConfig& config, const RunResult& result) {
   RunSummary s;
   s.scenario = config.simulation.name;
+  s.changes = describeChanges(result.changes);
   s.diverged = result.diverged();
   s.stop_message = result.message;
   s.duration = result.end_time;
@@ -85,6 +93,9 @@ std::string formatSummary(const RunSummary& s) {
     out << "result:                 DIVERGED — " << s.stop_message << "\n";
   } else {
     out << "result:                 completed " << s.duration << " s\n";
+  }
+  for (std::size_t i = 0; i < s.changes.size(); ++i) {
+    out << (i == 0 ? "changes:                " : "                        ") << s.changes[i] << "\n";
   }
   std::snprintf(line, sizeof(line), "final lateral offset:   %+.4g m\n", s.final_lateral_offset);
   out << line;

@@ -1,5 +1,6 @@
 #include "lane_keeping/sim/vehicle_plant.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace lane_keeping {
@@ -67,8 +68,35 @@ void VehiclePlant::step() {
   const Eigen::VectorXd* k1 = (u0 == sample_torque_) ? &x_dot_at_sample_ : nullptr;
   rk4_.step(f, nanosecondsToSeconds(h_), x_, k1);
   t_ += h_;
+  // A change due at the new time acts from here: the sample at t_ (outputs, what the sensors record)
+  // already comes from the new model, and so does the next step.
+  while (!pending_.empty() && pending_.front().stamp <= t_) {
+    model_ = std::move(pending_.front().model);
+    pending_.erase(pending_.begin());
+  }
   refresh(u1);
   torque_line_.discardBefore(t_);
+}
+
+void VehiclePlant::scheduleChange(Nanoseconds stamp, SingleTrackModel model, Nanoseconds torque_delay) {
+  if (stamp <= t_) {
+    throw ScheduleError("vehicle plant: a change at t = " + formatSeconds(nanosecondsToSeconds(stamp)) +
+                        " s is not after the plant's time " + formatSeconds(nanosecondsToSeconds(t_)) + " s");
+  }
+  if (model.stateSize() != model_.stateSize() || model.frontTireOffset() != model_.frontTireOffset() ||
+      model.rearTireOffset() != model_.rearTireOffset()) {
+    throw ScheduleError("vehicle plant: a change of the model's state layout cannot happen during a run");
+  }
+  torque_line_.scheduleDelay(stamp, torque_delay);
+  const auto at = std::upper_bound(pending_.begin(), pending_.end(), stamp,
+                                   [](Nanoseconds t, const Pending& p) { return t < p.stamp; });
+  pending_.insert(at, Pending{stamp, std::move(model)});
+}
+
+void VehiclePlant::clearChangesFrom(Nanoseconds from) {
+  torque_line_.clearDelaysFrom(from);
+  pending_.erase(std::remove_if(pending_.begin(), pending_.end(), [from](const Pending& p) { return p.stamp >= from; }),
+                 pending_.end());
 }
 
 }  // namespace lane_keeping
