@@ -165,6 +165,16 @@ GapMonitorRos::GapMonitorRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::strin
   diagnose_spinner_ = std::make_unique<ros::AsyncSpinner>(1, &diagnose_queue_);
   diagnose_spinner_->start();
 
+  GapMonitorConfig shown;
+  shown.warn_excess = options.warn_excess;
+  shown.error_excess = options.error_excess;
+  shown.max_floor = options.max_floor;
+  shown.period = options.period;
+  shown.reference_draws = options.reference_draws;
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<GapMonitorConfig>>(reconfigure_mutex_, pnh_);
+  reconfigure_->updateConfig(shown);
+  reconfigure_->setCallback([this](GapMonitorConfig& request, uint32_t level) { onReconfigure(request, level); });
+
   worker_ = std::thread([this] { evaluationLoop(); });
   input_thread_ = std::thread([this] {
     while (!input_stopping_ && ros::ok()) {
@@ -327,6 +337,34 @@ void GapMonitorRos::publish(const MonitorStatus& status) {
                    format(", %g", status.band_f0) + format("-%g Hz", status.band_f1);
   }
   marker_pub_.publish(marker);
+}
+
+void GapMonitorRos::onReconfigure(GapMonitorConfig& request, uint32_t) {
+  GapMonitorOptions options = monitor_->options();
+  const GapMonitorOptions before = options;
+  options.warn_excess = request.warn_excess;
+  options.error_excess = request.error_excess;
+  options.max_floor = request.max_floor;
+  options.period = request.period;
+  options.reference_draws = request.reference_draws;
+  try {
+    monitor_->setOptions(options);
+    if (options.warn_excess != before.warn_excess || options.error_excess != before.error_excess ||
+        options.max_floor != before.max_floor || options.period != before.period ||
+        options.reference_draws != before.reference_draws) {
+      ROS_INFO("%s: dynamic_reconfigure: warn_excess %g, error_excess %g, max_floor %g, period %g s, reference_draws %d "
+               "(from the next evaluation)",
+               name_.c_str(), options.warn_excess, options.error_excess, options.max_floor, options.period,
+               options.reference_draws);
+    }
+  } catch (const ConfigError& e) {
+    ROS_ERROR("%s: dynamic_reconfigure: refused (the values stay as they were): %s", name_.c_str(), e.what());
+    request.warn_excess = before.warn_excess;
+    request.error_excess = before.error_excess;
+    request.max_floor = before.max_floor;
+    request.period = before.period;
+    request.reference_draws = before.reference_draws;
+  }
 }
 
 bool GapMonitorRos::onDiagnose(Diagnose::Request&, Diagnose::Response& response) {

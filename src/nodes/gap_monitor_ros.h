@@ -12,6 +12,7 @@
 ///    on `gap_status`, and a text marker above the car on `gap_marker` for rviz;
 ///  * serves `~diagnose` (lane_keeping/Diagnose): the full diagnosis (lk_gap's code) of the current
 ///    window, in a thread of its own, so the monitor goes on while it runs.
+/// dynamic_reconfigure (cfg/GapMonitor.cfg): warn_excess, error_excess, max_floor, period, reference_draws.
 /// Private parameters: the GapMonitorOptions keys (window, period, sample_period, warn_excess, ...),
 /// config_namespace (the nominal configuration, default "config"), diagnose_sample_period, queue.
 #include <atomic>
@@ -23,11 +24,14 @@
 #include <string>
 #include <thread>
 
+#include <boost/thread/recursive_mutex.hpp>
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 
 #include "lane_keeping/Diagnose.h"
+#include "lane_keeping/GapMonitorConfig.h"
 #include "lane_keeping/DesiredSteeringArray.h"
 #include "lane_keeping/SteeringTorqueArray.h"
 #include "lane_keeping/VehicleStateArray.h"
@@ -51,6 +55,9 @@ class GapMonitorRos {
   void evaluationLoop();
   void publish(const MonitorStatus& status);
   bool onDiagnose(Diagnose::Request& request, Diagnose::Response& response);
+  /// dynamic_reconfigure: thresholds and reference checked by GapMonitorOptions::validate; a refused
+  /// request is logged with the reason and the server's values put back.
+  void onReconfigure(GapMonitorConfig& request, uint32_t level);
 
   ros::NodeHandle nh_, pnh_;
   std::string name_;
@@ -82,6 +89,8 @@ class GapMonitorRos {
   std::atomic<bool> diagnosing_{false};
 
   std::atomic<bool> input_stopping_{false};
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<GapMonitorConfig>> reconfigure_;
   std::thread worker_;       // last: joined first
   std::thread input_thread_;
 };

@@ -7,6 +7,8 @@ the run ends, then asserts, per the private parameters:
   ~onset          [s] when the effect sets in: no WARN/ERROR before it, the WARN within ~max_delay after
   ~max_delay      [s] of stamp time
   ~min_statuses   evaluations that must have been published
+  ~reconfigure    check the monitor's dynamic_reconfigure after the run: error_excess below warn_excess is
+                  refused (the old value reads back), a valid warn_excess is taken
   ~record         a file to write the (stamp, subsystem, level, net excess) rows to ('' = none), for
                   comparing a live run with a bag replay (compare_gap_statuses.py)
 """
@@ -73,6 +75,17 @@ class GapMonitorTest(unittest.TestCase):
         self.assertEqual(others, [], 'subsystems other than %s went WARN/ERROR: %s' % (expect_warn, others[:5]))
         diag_alarm = [d for d in diagnostics if d.level in (DiagnosticStatus.WARN, DiagnosticStatus.ERROR)]
         self.assertTrue(any(expect_warn in d.name for d in diag_alarm), '/diagnostics never showed the WARN')
+        if rospy.get_param('~reconfigure', False):
+            self.check_reconfigure('/%s/gap_monitor' % ns)
+
+    def check_reconfigure(self, server):
+        import dynamic_reconfigure.client
+        client = dynamic_reconfigure.client.Client(server, timeout=30)
+        before = client.get_configuration(timeout=10)
+        refused = client.update_configuration({'error_excess': 0.01})  # below warn_excess 0.03
+        self.assertAlmostEqual(refused['error_excess'], before['error_excess'], msg='error_excess below warn_excess taken')
+        taken = client.update_configuration({'warn_excess': 0.05})
+        self.assertAlmostEqual(taken['warn_excess'], 0.05)  # (the service's answer: the values the server holds)
 
 
 if __name__ == '__main__':
