@@ -110,11 +110,15 @@ class DelayLine {
     const Nanoseconds query = t - delayAt(t);
     if (query <= item(0).stamp) return item(0).value;
     // Consumers prune what they have read (discardBefore), so the samples around the query usually
-    // sit at the front even when the producer runs far ahead (the tracker, by tau1); with a retained
-    // history (retainFor, or a longer delay to come) they sit further in: binary search then.
+    // sit at the front even when the producer runs far ahead (the tracker, by tau1). With a retained
+    // history (retainFor, or a longer delay to come) they sit further in, near the newest sample (a
+    // consumer reads as soon as its input covers the read): look there first, then binary search.
     std::size_t i = 0;  // last stamp <= query
     if (size_ >= 2 && item(1).stamp <= query) {
-      std::size_t lo = 1, hi = size_ - 1;
+      std::size_t hi = size_ - 1;
+      for (int steps = 0; hi > 1 && item(hi).stamp > query && steps < 4; ++steps) --hi;
+      std::size_t lo = item(hi).stamp <= query ? hi : 1;
+      if (lo != hi) --hi;  // the answer lies in [1, hi]
       while (lo < hi) {
         const std::size_t mid = lo + (hi - lo + 1) / 2;
         if (item(mid).stamp <= query) {

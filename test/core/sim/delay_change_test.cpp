@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <functional>
+#include <random>
 
 #include "lane_keeping/control/path.h"
 #include "lane_keeping/sim/control_stages.h"
@@ -98,6 +99,33 @@ TEST(DelayChange, RampThroughOffGridDelaysWithLinearInterpolation) {
     line.discardBefore(t);
   }
   EXPECT_EQ(line.delay(), 3'330'000);  // the passed changes became the current delay
+}
+
+TEST(DelayChange, ReadsDeepInARetainedHistoryFindTheRightSamples) {
+  // Random delays (0 to 50 ms) read from a line that keeps 60 ms of a ramp sampled at uneven stamps:
+  // the search (from the newest sample back, then by halves) gives what a plain scan gives.
+  std::mt19937 random(17);
+  DelayLine<TorqueCommand> line("ramp", 0, Hold::kLinear, 100'000);
+  line.retainFor(60 * kMs);
+  std::vector<Nanoseconds> stamps;
+  Nanoseconds s = 0;
+  for (int k = 0; k < 20000; ++k) {
+    stamps.push_back(s);
+    line.push(s, TorqueCommand{static_cast<double>(k)});
+    s += 50'000 + static_cast<Nanoseconds>(random() % 100'000);
+  }
+  const Nanoseconds last = stamps.back();
+  for (int n = 0; n < 2000; ++n) {
+    const Nanoseconds t = 100 * kMs + static_cast<Nanoseconds>(random() % static_cast<unsigned>(last - 100 * kMs));
+    const Nanoseconds tau = static_cast<Nanoseconds>(random() % static_cast<unsigned>(50 * kMs));
+    line.clearDelaysFrom(0);
+    line.scheduleDelay(0, tau);
+    const Nanoseconds q = t - tau;
+    std::size_t k = 0;
+    while (k + 1 < stamps.size() && stamps[k + 1] <= q) ++k;
+    const double w = k + 1 < stamps.size() ? static_cast<double>(q - stamps[k]) / static_cast<double>(stamps[k + 1] - stamps[k]) : 0.0;
+    ASSERT_DOUBLE_EQ(line.at(t).torque, static_cast<double>(k) + w) << "t " << t << " tau " << tau;
+  }
 }
 
 TEST(DelayChange, TrackerGainAndDelayChangeAtTheirStamp) {
