@@ -53,7 +53,18 @@ SimConfig loadSimConfigFromParams(const ros::NodeHandle& nh, const std::string& 
   }
   FlatParams source;
   source.overlayNode(toYaml(tree), "ROS parameters " + resolved);
-  return simConfigFromFlat(source);
+  // Every node reads the whole tree once at start; a key missing from it would silently take its
+  // compiled-in default in this node only, so it is refused, naming the key (issue 16).
+  try {
+    return simConfigFromFlat(source, MissingKeys::kRefuse);
+  } catch (const ConfigError& e) {
+    // Problems without a location (a missing key, a cross-field rule) name the tree they concern.
+    std::vector<ConfigProblem> problems = e.problems();
+    for (ConfigProblem& problem : problems) {
+      if (problem.location.empty()) problem.location = "ROS parameters " + resolved;
+    }
+    throw ConfigError(problems);
+  }
 }
 
 void NodeParamReader::fail(const std::string& key, const std::string& message) {

@@ -3,8 +3,8 @@
 
 Runs roslaunch (against the test's master) with one bad parameter per case and expects it to end by
 itself within a time limit, its output naming the key. Cases: an out-of-range delay (three
-processes), a non-numeric gain (nodelets), a misspelt key in an overlay file, and bad runtime changes
-(~changes: a negative friction, a key fixed for a run)."""
+processes), a non-numeric gain (nodelets), a misspelt key in an overlay file, a key missing from the
+parameter server, and bad runtime changes (~changes: a negative friction, a key fixed for a run)."""
 import os
 import subprocess
 import sys
@@ -55,6 +55,18 @@ class CheckBadParameter(unittest.TestCase):
         finally:
             os.remove(f.name)
 
+
+    def test_key_missing_from_the_parameter_server(self):
+        # A full configuration (config:=) that lacks a key: every node refuses the partial tree naming the
+        # key, rather than filling it with a compiled-in default the user never saw.
+        with open(os.path.join(package_path(), 'config', 'default.yaml')) as f:
+            lines = [l for l in f if not l.startswith('  mass:')]  # vehicle.mass (the scenario sets no mass)
+        with tempfile.NamedTemporaryFile('w', suffix='.yaml', delete=False) as f:
+            f.writelines(lines)
+        try:
+            self.check('missing_key', ['config:=' + f.name], 'vehicle.mass', 'is missing')
+        finally:
+            os.remove(f.name)
 
     def test_bad_runtime_change(self):
         self.check('bad_change', ["changes:=['10:steering.coulomb_friction=-3']"], 'steering.coulomb_friction', '-3')

@@ -29,10 +29,14 @@ class FlatParamReader : public ParamVisitor {
   /// Keys present in the source that no visit asked for (typos), as problems.
   std::vector<ConfigProblem> unknownKeyProblems() const;
   const std::vector<ConfigProblem>& problems() const { return problems_; }
+  /// Keys a visit asked for that the source does not hold (they keep their compiled-in defaults),
+  /// in visit order; optional numbers (absent = "auto") are not listed.
+  const std::vector<std::string>& absentKeys() const { return absent_; }
 
  private:
   void fail(const std::string& key, const std::string& message);
   const FlatParams& source_;
+  std::vector<std::string> absent_;
   std::set<std::string> used_;
   std::vector<ConfigProblem> problems_;
 };

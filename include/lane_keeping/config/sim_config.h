@@ -43,7 +43,12 @@ struct SimConfig {
 /// Paper defaults, then each file in order, then each "key=value". Unknown keys, type errors and
 /// invalid values all fail with a ConfigError that names the key and the file:line.
 SimConfig loadSimConfig(const std::vector<std::string>& files, const std::vector<std::string>& assignments = {});
-/// Same from an already assembled FlatParams (ROS parameter trees arrive this way).
-SimConfig simConfigFromFlat(const FlatParams& source);
+/// Whether a key the source lacks keeps its compiled-in default (files: an overlay names only what it
+/// changes) or is an error (a ROS parameter tree, which the launch files load complete from
+/// config/default.yaml: a key missing there means the server does not hold what the user thinks).
+enum class MissingKeys { kDefault, kRefuse };
+/// Same from an already assembled FlatParams (ROS parameter trees arrive this way). With
+/// MissingKeys::kRefuse every required key must be present; the error names each one missing.
+SimConfig simConfigFromFlat(const FlatParams& source, MissingKeys missing = MissingKeys::kDefault);
 
 }  // namespace lane_keeping

@@ -75,7 +75,10 @@ void FlatParamReader::fail(const std::string& key, const std::string& message) {
 void FlatParamReader::number(const std::string& key, double& value, const char* unit, const Range&,
                              const char*) {
   const FlatParams::Entry* entry = source_.find(key);
-  if (entry == nullptr) return;
+  if (entry == nullptr) {
+    absent_.push_back(key);
+    return;
+  }
   used_.insert(key);
   double parsed = 0.0;
   if (!parseDouble(entry->value, &parsed)) {
@@ -101,7 +104,10 @@ void FlatParamReader::optionalNumber(const std::string& key, std::optional<doubl
 
 void FlatParamReader::integer(const std::string& key, int& value, const Range&, const char*) {
   const FlatParams::Entry* entry = source_.find(key);
-  if (entry == nullptr) return;
+  if (entry == nullptr) {
+    absent_.push_back(key);
+    return;
+  }
   used_.insert(key);
   double parsed = 0.0;
   if (!parseDouble(entry->value, &parsed) || !std::isfinite(parsed) || parsed != std::floor(parsed) ||
@@ -114,7 +120,10 @@ void FlatParamReader::integer(const std::string& key, int& value, const Range&, 
 
 void FlatParamReader::flag(const std::string& key, bool& value, const char*) {
   const FlatParams::Entry* entry = source_.find(key);
-  if (entry == nullptr) return;
+  if (entry == nullptr) {
+    absent_.push_back(key);
+    return;
+  }
   used_.insert(key);
   try {
     value = entry->value.as<bool>();
@@ -126,7 +135,10 @@ void FlatParamReader::flag(const std::string& key, bool& value, const char*) {
 void FlatParamReader::choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed,
                              const char*) {
   const FlatParams::Entry* entry = source_.find(key);
-  if (entry == nullptr) return;
+  if (entry == nullptr) {
+    absent_.push_back(key);
+    return;
+  }
   used_.insert(key);
   if (!entry->value.IsScalar()) {
     fail(key, "= " + scalarText(entry->value) + ": expected one of the names listed in README");
@@ -138,7 +150,10 @@ void FlatParamReader::choice(const std::string& key, std::string& value, const s
 
 void FlatParamReader::points(const std::string& key, std::vector<Point2>& value, const char*, const char*) {
   const FlatParams::Entry* entry = source_.find(key);
-  if (entry == nullptr) return;
+  if (entry == nullptr) {
+    absent_.push_back(key);
+    return;
+  }
   used_.insert(key);
   if (entry->value.IsScalar()) {
     // A file of points (points_file.h), beside the configuration file that names it.

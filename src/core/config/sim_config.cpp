@@ -86,11 +86,26 @@ void SimConfig::print(std::ostream& out, bool with_docs) const {
   copy.visit(printer);
 }
 
-SimConfig simConfigFromFlat(const FlatParams& source) {
+SimConfig simConfigFromFlat(const FlatParams& source, MissingKeys missing) {
   SimConfig config;
   FlatParamReader reader(source);
   config.visit(reader);
   std::vector<ConfigProblem> problems = reader.problems();
+  if (missing == MissingKeys::kRefuse && !reader.absentKeys().empty()) {
+    // Name each missing key with the value it would otherwise have taken, so the user sees what the
+    // tree lacks (a key deleted from the server, a launch that loaded only its own overlay).
+    SimConfig defaults;
+    ParamCatalog catalog;
+    defaults.visit(catalog);
+    for (const std::string& key : reader.absentKeys()) {
+      std::string default_text;
+      for (const ParamCatalog::Row& row : catalog.rows()) {
+        if (row.key == key) default_text = row.value + (row.unit.empty() ? "" : " " + row.unit);
+      }
+      problems.push_back(ConfigProblem{key, "", "is missing (its default would be " + default_text +
+                                                    "); a partial configuration is refused, not completed silently"});
+    }
+  }
   const auto unknown = reader.unknownKeyProblems();
   problems.insert(problems.end(), unknown.begin(), unknown.end());
   if (!problems.empty()) throw ConfigError(problems);

@@ -7,6 +7,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "lane_keeping/config/flat_params.h"
 #include "lane_keeping/config/sim_config.h"
 
 namespace lane_keeping {
@@ -59,6 +60,39 @@ TEST(ConfigFiles, DefaultYamlEqualsCompiledDefaults) {
   SimConfig{}.print(compiled);
   loadSimConfig({kSource + "/config/default.yaml"}).print(loaded);
   EXPECT_EQ(compiled.str(), loaded.str());
+}
+
+// What a node reads from the parameter server (MissingKeys::kRefuse): default.yaml holds every key,
+// so the launch files' tree is complete; a tree missing keys is refused naming each with its default,
+// and an overlay alone (what a launch that forgot default.yaml would load) is refused too.
+TEST(ConfigErrors, APartialTreeIsRefusedNamingEveryMissingKey) {
+  FlatParams complete;
+  complete.overlayFile(kSource + "/config/default.yaml");
+  complete.overlayFile(kSource + "/config/scenarios/fig6.yaml");
+  EXPECT_NO_THROW(simConfigFromFlat(complete, MissingKeys::kRefuse));
+
+  FlatParams partial = complete;
+  partial.erasePrefix("delays.pose_to_tracker");
+  partial.erasePrefix("vehicle.mass");
+  EXPECT_NO_THROW(simConfigFromFlat(partial));  // files: absent keys keep their defaults
+  try {
+    simConfigFromFlat(partial, MissingKeys::kRefuse);
+    FAIL() << "a tree without delays.pose_to_tracker and vehicle.mass was accepted";
+  } catch (const ConfigError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("delays.pose_to_tracker is missing (its default would be 0.2 s)"), std::string::npos) << what;
+    EXPECT_NE(what.find("vehicle.mass is missing (its default would be"), std::string::npos) << what;
+    EXPECT_EQ(what.find("tracker.k_y"), std::string::npos) << what;  // only the missing ones
+  }
+
+  FlatParams overlay_only;
+  overlay_only.overlayFile(kSource + "/config/scenarios/fig6.yaml");
+  try {
+    simConfigFromFlat(overlay_only, MissingKeys::kRefuse);
+    FAIL() << "a tree holding only an overlay was accepted";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("vehicle.wheelbase"), std::string::npos) << e.what();
+  }
 }
 
 TEST(ConfigErrors, NegativeMassNamesKeyFileAndLine) {
