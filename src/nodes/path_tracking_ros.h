@@ -18,6 +18,7 @@
 #include "lane_keeping/VehicleStateArray.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/sim/control_stages.h"
+#include "clock_jump.h"
 #include "loop_io.h"
 #include "node_changes.h"
 
@@ -31,6 +32,11 @@ class PathTrackingRos {
 
  private:
   void onVehicleState(const VehicleStateArray::ConstPtr& msg);
+  /// Pushes the samples into the stage (a stale one is rejected by the core) and computes what they cover.
+  void take(const VehicleStateArray::ConstPtr& msg);
+  /// From the initial state, after the ROS clock jumped back (clock_jump.h); then the held messages.
+  void restart();
+  void createStage();
   void produceAndFlush();
   void flush();
   /// dynamic_reconfigure: each changed value goes through the core's checks; a refused one is put back.
@@ -46,6 +52,9 @@ class PathTrackingRos {
   ros::WallTimer flush_timer_;  // retries a flush that waited for a subscriber
   RejectLog rejects_;  // vehicle_state
   bool started_ = false;  // the first input arrived: the run is on
+  ClockJumpGuard jumps_;
+  Nanoseconds latest_input_ = ClockJumpGuard::kNone;  // latest pose stamp taken since the (re)start
+  int restarts_ = 0;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<PathTrackingConfig>> reconfigure_;
   PathTrackingConfig shown_;  // what the server shows: values in force, or accepted and scheduled

@@ -20,6 +20,7 @@
 #include "lane_keeping/SteeringTorqueArray.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/sim/control_stages.h"
+#include "clock_jump.h"
 #include "loop_io.h"
 #include "node_changes.h"
 
@@ -33,6 +34,17 @@ class SteeringActuatorRos {
  private:
   void onDesired(const DesiredSteeringArray::ConstPtr& msg);
   void onMeasured(const MeasuredSteeringArray::ConstPtr& msg);
+  /// Push the samples into the stage (a stale one is rejected by the core) and compute what they cover.
+  void takeDesired(const DesiredSteeringArray::ConstPtr& msg);
+  void takeMeasured(const MeasuredSteeringArray::ConstPtr& msg);
+  /// clock_jump.h: true if the message was held for a clock jump not yet seen, or dropped as one of
+  /// the pass before a jump; false if the caller takes it now (after a restart, if it begins a new pass).
+  template <typename ArrayMsg>
+  bool heldOrDropped(const ArrayMsg& msg, Nanoseconds latest, const std::string& topic, RejectLog& rejects,
+                     std::function<void()> take);
+  /// From the initial state, after the ROS clock jumped back (clock_jump.h); then the held messages.
+  void restart();
+  void createStage();
   void produceAndFlush();
   /// The run has started (first input): announce the configured changes.
   void started();
@@ -49,6 +61,9 @@ class SteeringActuatorRos {
   ros::WallTimer flush_timer_;
   RejectLog desired_rejects_, measured_rejects_;
   bool started_ = false;
+  ClockJumpGuard jumps_;
+  Nanoseconds latest_desired_ = ClockJumpGuard::kNone, latest_measured_ = ClockJumpGuard::kNone;  // since the (re)start
+  int restarts_ = 0;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<SteeringActuatorConfig>> reconfigure_;
   SteeringActuatorConfig shown_;  // what the server shows: values in force, or accepted and scheduled
