@@ -291,9 +291,9 @@ void VehiclePlantRos::warnIfBehind(double lag) {
   const double t = nanosecondsToSeconds(session_->plant().time());
   const double wall = (now - wall_start_).toSec();
   ROS_WARN("%s: realtime run %.3f s behind the wall clock at t = %.2f s (%.2fx real time so far; lag_warning = %g s): "
-           "the loop cannot keep up here%s",
+           "the loop cannot keep up (an input later than its delay allows, or steps slower than real time%s)",
            name_.c_str(), lag, t, wall > 0 ? t / wall : 0.0, lag_warning_,
-           config_.actuator.rate > 2000.0 ? " (a fast actuator over three processes: try nodelets:=true)" : "");
+           config_.actuator.rate > 2000.0 ? "; with a fast actuator over three processes: try nodelets:=true" : "");
 }
 
 void VehiclePlantRos::publishClock(bool force) {
