@@ -109,6 +109,34 @@ TEST(Path, AHundredThousandWaypointsBuildAndMatchTheSplineThroughThem) {
   EXPECT_NEAR(projectedDistance(*lane, 30000.0, points[60000][1] + 0.7), 0.7, 0.05);
 }
 
+TEST(Path, WaypointLaneIsTheNaturalCubicSpline) {
+  // What makes the spline the spline (the tridiagonal system the constructor solves): slope and curvature
+  // continuous at every knot, zero curvature at both ends. Uneven spacing, so that no row is like another.
+  std::vector<Point2> points;
+  double x = 0.0;
+  for (int i = 0; i < 2000; ++i) {
+    points.push_back({x, 2.0 * std::sin(x / 40.0) + 0.3 * std::cos(x / 7.0) + 0.1 * (i % 3)});
+    x += 0.3 + 0.9 * std::fabs(std::sin(1.7 * i));
+  }
+  const auto lane = waypointLane(points);
+  double worst_slope = 0.0, worst_second = 0.0;
+  for (std::size_t i = 1; i + 1 < points.size(); ++i) {
+    const double xi = points[i][0], eps = 1e-7;
+    double f_left, s_left, c_left, f_right, s_right, c_right;
+    lane->evaluate(xi - eps, &f_left, &s_left, &c_left);
+    lane->evaluate(xi + eps, &f_right, &s_right, &c_right);
+    worst_slope = std::max(worst_slope, std::fabs(s_left - s_right));
+    worst_second = std::max(worst_second, std::fabs(c_left - c_right));
+  }
+  EXPECT_LT(worst_slope, 1e-6);   // a kink would show as the jump in slope, O(0.1) here
+  EXPECT_LT(worst_second, 1e-5);
+  double f, s, c;
+  lane->evaluate(points.front()[0] + 1e-9, &f, &s, &c);
+  EXPECT_NEAR(c, 0.0, 1e-6);
+  lane->evaluate(points.back()[0] - 1e-9, &f, &s, &c);
+  EXPECT_NEAR(c, 0.0, 1e-6);
+}
+
 }  // namespace
 }  // namespace lane_keeping
 
