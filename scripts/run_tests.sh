@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Every test: build (with test targets), run all gtest and rostest targets, print the verdict; then the
-# fuzz targets over their corpora and regressions (fuzz/run.sh).
+# fuzz targets over their corpora and regressions (fuzz/run.sh); then the core and stability gtests under
+# the sanitizers (scripts/run_sanitized_tests.sh).
 set -euo pipefail
 source "$(dirname "${BASH_SOURCE[0]}")/env.sh"
 "$REPO_ROOT/scripts/build.sh" tests
@@ -18,4 +19,10 @@ tests_status=${PIPESTATUS[0]}
 echo "== fuzz targets: corpus + regressions + 20000 inputs or 30 s each"
 LK_FUZZ_MAX_TIME="${LK_FUZZ_MAX_TIME:-30}" bash "$REPO_ROOT/fuzz/run.sh" 20000
 fuzz_status=$?
-[ "$tests_status" -eq 0 ] && [ "$fuzz_status" -eq 0 ]
+# The core and stability gtests under AddressSanitizer + UndefinedBehaviorSanitizer (build-sanitize/; about
+# 15 min with the build). The gap suite runs clean too but takes ~25 min more under the sanitizers: run it
+# with `bash scripts/run_sanitized_tests.sh gap` (README "Reliability").
+echo "== gtests under AddressSanitizer + UndefinedBehaviorSanitizer: core, stability"
+bash "$REPO_ROOT/scripts/run_sanitized_tests.sh" core stability
+sanitize_status=$?
+[ "$tests_status" -eq 0 ] && [ "$fuzz_status" -eq 0 ] && [ "$sanitize_status" -eq 0 ]
