@@ -17,6 +17,7 @@
 /// (stamped more than kJump after the clock the jump went to) are dropped with a warning, so a pass can
 /// lose a few samples at its very end, never change one.
 #include <cstddef>
+#include <cstdio>
 #include <functional>
 #include <limits>
 #include <string>
