@@ -19,9 +19,9 @@ tests_status=${PIPESTATUS[0]}
 echo "== fuzz targets: corpus + regressions + 20000 inputs or 30 s each"
 LK_FUZZ_MAX_TIME="${LK_FUZZ_MAX_TIME:-30}" bash "$REPO_ROOT/fuzz/run.sh" 20000
 fuzz_status=$?
-# The core and stability gtests under AddressSanitizer + UndefinedBehaviorSanitizer (build-sanitize/; about
-# 15 min with the build). The gap suite runs clean too but takes ~25 min more under the sanitizers: run it
-# with `bash scripts/run_sanitized_tests.sh gap` (README "Reliability").
+# The core and stability gtests under AddressSanitizer + UndefinedBehaviorSanitizer (build-sanitize/). The
+# gap suite runs clean too but takes 23 min more under the sanitizers: run it with
+# `bash scripts/run_sanitized_tests.sh gap` (README "Reliability").
 echo "== gtests under AddressSanitizer + UndefinedBehaviorSanitizer: core, stability"
 bash "$REPO_ROOT/scripts/run_sanitized_tests.sh" core stability
 sanitize_status=$?
