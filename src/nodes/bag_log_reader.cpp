@@ -73,6 +73,7 @@ class BagStructure {
     }
     std::uint64_t index_pos = 0;
     std::set<std::uint64_t> records, chunks, chunk_positions;
+    chunk_size_ = 0;  // no chunk yet: an index data record before any chunk indexes nothing
     for (std::uint64_t at = sizeof(version); at < size_;) {
       records.insert(at);
       Fields fields;
@@ -86,9 +87,13 @@ class BagStructure {
         chunks.insert(at);
         const std::uint64_t size = number(fields, "size", at);
         if (size > kMaxChunkBytes) fail(at, "a chunk of " + std::to_string(size) + " bytes uncompressed");
-        if (fields["compression"] == "none") {
+        chunk_size_ = size;
+        chunk_records_.clear();
+        chunk_walked_ = fields["compression"] == "none";
+        if (chunk_walked_) {
           if (size != data_len) fail(at, "an uncompressed chunk whose size field differs from its data length");
           for (std::uint64_t inner = data_at + 4; inner < next;) {  // message and connection records
+            chunk_records_.insert(inner - (data_at + 4));
             Fields inner_fields;
             const std::uint64_t inner_data = readHeader(inner, next, &inner_fields);
             const std::uint64_t inner_len = readLength(inner_data, next, "data");
@@ -97,6 +102,7 @@ class BagStructure {
           }
         }
       }
+      if (op == std::string(1, '\x04')) checkIndexData(at, data_at + 4, data_len, fields);
       // A connection record's data is a connection header, in the same field format (rosbag parses it).
       if (op == std::string(1, '\x07')) readFields(at, data_at + 4, data_len, &fields);
       at = next;
@@ -152,6 +158,26 @@ class BagStructure {
       f += 4 + field_len;
     }
   }
+  /// An index data record (op 0x04) lists, for the chunk before it, where each message record starts in
+  /// the chunk's uncompressed data: rosbag reads a message's header at that offset with no bounds check (a
+  /// bad offset read outside the chunk: SEGV, found by fuzzing in CI). Each offset must lie in the chunk
+  /// and, for an uncompressed chunk (walked above), be the start of one of its records; for a compressed
+  /// one the record behind it cannot be checked without decompressing, only the bound.
+  void checkIndexData(std::uint64_t at, std::uint64_t from, std::uint64_t length, Fields& fields) {
+    const std::uint64_t count = number(fields, "count", at);
+    if (count * 12 != length) {
+      fail(at, "an index of " + std::to_string(count) + " entries in " + std::to_string(length) + " bytes (12 each)");
+    }
+    const std::string entries = bytes(from, length);
+    for (std::uint64_t i = 0; i < count; ++i) {
+      std::uint32_t offset = 0;
+      std::memcpy(&offset, entries.data() + 12 * i + 8, 4);
+      if (offset + 8 > chunk_size_ || (chunk_walked_ && chunk_records_.count(offset) == 0)) {
+        fail(at, "index entry " + std::to_string(i) + " points at byte " + std::to_string(offset) +
+                     " of its chunk, which is not a record of it (" + std::to_string(chunk_size_) + " bytes)");
+      }
+    }
+  }
   std::uint64_t number(Fields& fields, const std::string& name, std::uint64_t at) const {
     const std::string& value = fields[name];
     if (value.size() != 4 && value.size() != 8) fail(at, "header field '" + name + "' missing or not 4 or 8 bytes");
@@ -163,6 +189,11 @@ class BagStructure {
   std::string path_;
   std::ifstream in_;
   std::uint64_t size_ = 0;
+  // The chunk the next index data records belong to: its uncompressed size and, if it was walked
+  // (uncompressed), where its records start in its data.
+  std::uint64_t chunk_size_ = 0;
+  bool chunk_walked_ = false;
+  std::set<std::uint64_t> chunk_records_;
 };
 
 /// The message as MessageInstance::instantiate reads it (nullptr if its type differs), but with the sample
