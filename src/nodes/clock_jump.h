@@ -26,6 +26,7 @@
 #include <ros/ros.h>
 
 #include "lane_keeping/common/time.h"
+#include "loop_io.h"
 
 namespace lane_keeping {
 
@@ -36,6 +37,68 @@ class ClockJumpGuard {
   static constexpr double kPendingWall = 1.0;  // [s wall] how long a clock jump waits for the new pass's input
   static constexpr std::size_t kMaxHeld = 10000;
   static constexpr Nanoseconds kNone = std::numeric_limits<Nanoseconds>::min();
+
+  /// What the node does to restart: `flush` sends what it has produced, `rebuild` makes its core stage
+  /// afresh (and forgets the latest stamps taken). `node`, `what` ("the path tracker") and `resets` (what
+  /// a restart resets) go into the warning.
+  void onRestart(std::string node, std::string what, std::string resets, std::function<void()> flush,
+                 std::function<void()> rebuild) {
+    node_ = std::move(node);
+    what_ = std::move(what);
+    resets_ = std::move(resets);
+    flush_ = std::move(flush);
+    rebuild_ = std::move(rebuild);
+  }
+
+  /// For a message on one input whose latest stamp taken since the (re)start is `latest`: true when it was
+  /// dropped (as one of the pass before a jump, counted on `rejects`) or held (`take` runs on release);
+  /// false when the caller takes it now, the node having restarted first if it begins a new pass.
+  template <typename ArrayMsg>
+  bool heldOrDropped(const ArrayMsg& msg, Nanoseconds latest, const std::string& topic, RejectLog& rejects,
+                     std::function<void()> take) {
+    const Nanoseconds first = msg->samples.empty() ? latest : toNanoseconds(msg->samples.front().header.stamp);
+    switch (classify(first, latest)) {
+      case Arrival::kDrop:
+        rejects.reject(node_, topic, "stamped " + formatSeconds(nanosecondsToSeconds(first)) +
+                                         ", a message of the pass before the clock jumped back");
+        return true;
+      case Arrival::kHold:
+        hold(std::move(take));
+        return true;
+      case Arrival::kRestart:
+        restart();
+        return false;
+      case Arrival::kTake:
+        return false;
+    }
+    return false;
+  }
+
+  /// For the node's wall timer: restarts when held messages have since seen the clock jump back (they
+  /// begin a new pass); releases them when they waited kHoldWall in vain (stale after all: the core
+  /// rejects them).
+  void onTimer() {
+    if (heldAndJumped()) {
+      restart();
+    } else if (heldTooLong()) {
+      release();
+    }
+  }
+
+  /// From the initial state, after the ROS clock jumped back; then the held messages.
+  void restart() {
+    if (flush_) flush_();
+    ++restarts_;
+    const std::string jump = restarted();
+    ROS_WARN("%s: the ROS clock jumped back %s (a bag played in a loop?): restarting %s from its initial state "
+             "(pass %d; %s)",
+             node_.c_str(), jump.c_str(), what_.c_str(), restarts_ + 1, resets_.c_str());
+    if (rebuild_) rebuild_();
+    release();  // the new pass's first messages, held until the clock confirmed the jump
+  }
+  int restarts() const { return restarts_; }
+
+ private:
 
   /// What to do with a message on one input, whose first sample is stamped `first`, `latest` being the
   /// latest stamp the node took on that input since its (re)start.
@@ -89,7 +152,6 @@ class ClockJumpGuard {
     return text;
   }
 
- private:
   /// Notes the ROS clock (simulated time only) going back by more than kJump since the latest it showed.
   void noticeClock() {
     if (!ros::Time::isSimTime()) return;
@@ -107,6 +169,9 @@ class ClockJumpGuard {
     return !pending_wall_.isZero() && (ros::WallTime::now() - pending_wall_).toSec() < kPendingWall;
   }
 
+  std::string node_, what_, resets_;
+  std::function<void()> flush_, rebuild_;
+  int restarts_ = 0;
   double latest_clock_ = -std::numeric_limits<double>::infinity();
   double jumped_from_ = 0.0, jumped_to_ = 0.0;
   ros::WallTime pending_wall_;    // when the clock jumped, until the new pass's first input restarts the node

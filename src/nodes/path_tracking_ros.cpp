@@ -16,6 +16,8 @@ PathTrackingRos::PathTrackingRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::s
   config_ = loadSimConfigFromParams(nh_, config_ns);
   changes_ = std::make_unique<NodeChanges>(nh_, pnh_, config_, LoopRole::kTracker, name_);
   const SimConfig& start = changes_->start();
+  jumps_.onRestart(name_, "the path tracker", "delay lines empty, runtime changes scheduled again",
+                   [this] { flush(); }, [this] { createStage(); });
   createStage();
 
   command_pub_.advertise(nh_, topics::kDesiredSteering);
@@ -23,11 +25,7 @@ PathTrackingRos::PathTrackingRos(ros::NodeHandle nh, ros::NodeHandle pnh, std::s
                              loopTransportHints());
   flush_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), [this](const ros::WallTimerEvent&) {
     flush();
-    if (jumps_.heldAndJumped()) {
-      restart();  // the clock went back since: the held messages begin a new pass
-    } else if (jumps_.heldTooLong()) {
-      jumps_.release();  // it did not: they were stale after all (the core rejects them)
-    }
+    jumps_.onTimer();
   });
 
   // The server starts from the loaded configuration, not from the .cfg's defaults.
@@ -51,22 +49,7 @@ void PathTrackingRos::onVehicleState(const VehicleStateArray::ConstPtr& msg) {
     rejects_.reject(name_, state_sub_.getTopic(), bad);
     return;
   }
-  const Nanoseconds first = msg->samples.empty() ? latest_input_ : toNanoseconds(msg->samples.front().header.stamp);
-  switch (jumps_.classify(first, latest_input_)) {
-    case ClockJumpGuard::Arrival::kDrop:
-      rejects_.reject(name_, state_sub_.getTopic(),
-                      "stamped " + formatSeconds(nanosecondsToSeconds(first)) +
-                          ", a message of the pass before the clock jumped back");
-      return;
-    case ClockJumpGuard::Arrival::kHold:
-      jumps_.hold([this, msg] { take(msg); });
-      return;
-    case ClockJumpGuard::Arrival::kRestart:
-      restart();
-      break;
-    case ClockJumpGuard::Arrival::kTake:
-      break;
-  }
+  if (jumps_.heldOrDropped(msg, latest_input_, state_sub_.getTopic(), rejects_, [this, msg] { take(msg); })) return;
   take(msg);
 }
 
@@ -80,17 +63,6 @@ void PathTrackingRos::take(const VehicleStateArray::ConstPtr& msg) {
     latest_input_ = std::max(latest_input_, stamp);
   });
   produceAndFlush();
-}
-
-void PathTrackingRos::restart() {
-  flush();
-  ++restarts_;
-  const std::string jump = jumps_.restarted();
-  ROS_WARN("%s: the ROS clock jumped back %s (a bag played in a loop?): restarting the path tracker from its "
-           "initial state (pass %d; delay lines empty, runtime changes scheduled again)",
-           name_.c_str(), jump.c_str(), restarts_ + 1);
-  createStage();
-  jumps_.release();  // the new pass's first messages, held until the clock confirmed the jump
 }
 
 void PathTrackingRos::createStage() {

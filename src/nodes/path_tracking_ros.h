@@ -34,8 +34,6 @@ class PathTrackingRos {
   void onVehicleState(const VehicleStateArray::ConstPtr& msg);
   /// Pushes the samples into the stage (a stale one is rejected by the core) and computes what they cover.
   void take(const VehicleStateArray::ConstPtr& msg);
-  /// From the initial state, after the ROS clock jumped back (clock_jump.h); then the held messages.
-  void restart();
   void createStage();
   void produceAndFlush();
   void flush();
@@ -52,9 +50,8 @@ class PathTrackingRos {
   ros::WallTimer flush_timer_;  // retries a flush that waited for a subscriber
   RejectLog rejects_;  // vehicle_state
   bool started_ = false;  // the first input arrived: the run is on
-  ClockJumpGuard jumps_;
+  ClockJumpGuard jumps_;  // restarts the node from its initial state when the ROS clock jumps back
   Nanoseconds latest_input_ = ClockJumpGuard::kNone;  // latest pose stamp taken since the (re)start
-  int restarts_ = 0;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<PathTrackingConfig>> reconfigure_;
   PathTrackingConfig shown_;  // what the server shows: values in force, or accepted and scheduled

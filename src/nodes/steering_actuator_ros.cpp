@@ -16,6 +16,8 @@ SteeringActuatorRos::SteeringActuatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
   config_ = loadSimConfigFromParams(nh_, config_ns);
   changes_ = std::make_unique<NodeChanges>(nh_, pnh_, config_, LoopRole::kActuator, name_);
   const SimConfig& start = changes_->start();
+  jumps_.onRestart(name_, "the steering actuator", "delay lines empty, integrator zero, runtime changes scheduled again",
+                   [this] { torque_pub_.flush(); }, [this] { createStage(); });
   createStage();
 
   torque_pub_.advertise(nh_, topics::kSteeringTorque);
@@ -25,11 +27,7 @@ SteeringActuatorRos::SteeringActuatorRos(ros::NodeHandle nh, ros::NodeHandle pnh
                                 loopTransportHints());
   flush_timer_ = nh_.createWallTimer(ros::WallDuration(0.05), [this](const ros::WallTimerEvent&) {
     torque_pub_.flush();
-    if (jumps_.heldAndJumped()) {
-      restart();  // the clock went back since: the held messages begin a new pass
-    } else if (jumps_.heldTooLong()) {
-      jumps_.release();  // it did not: they were stale after all (the core rejects them)
-    }
+    jumps_.onTimer();
   });
 
   // The server starts from the loaded configuration, not from the .cfg's defaults. tau2 shows the
@@ -60,7 +58,7 @@ void SteeringActuatorRos::onDesired(const DesiredSteeringArray::ConstPtr& msg) {
     desired_rejects_.reject(name_, desired_sub_.getTopic(), bad);
     return;
   }
-  if (heldOrDropped(msg, latest_desired_, desired_sub_.getTopic(), desired_rejects_, [this, msg] { takeDesired(msg); })) {
+  if (jumps_.heldOrDropped(msg, latest_desired_, desired_sub_.getTopic(), desired_rejects_, [this, msg] { takeDesired(msg); })) {
     return;
   }
   takeDesired(msg);
@@ -81,7 +79,7 @@ void SteeringActuatorRos::onMeasured(const MeasuredSteeringArray::ConstPtr& msg)
     measured_rejects_.reject(name_, measured_sub_.getTopic(), bad);
     return;
   }
-  if (heldOrDropped(msg, latest_measured_, measured_sub_.getTopic(), measured_rejects_, [this, msg] { takeMeasured(msg); })) {
+  if (jumps_.heldOrDropped(msg, latest_measured_, measured_sub_.getTopic(), measured_rejects_, [this, msg] { takeMeasured(msg); })) {
     return;
   }
   takeMeasured(msg);
@@ -94,38 +92,6 @@ void SteeringActuatorRos::takeMeasured(const MeasuredSteeringArray::ConstPtr& ms
     latest_measured_ = std::max(latest_measured_, stamp);
   });
   produceAndFlush();
-}
-
-template <typename ArrayMsg>
-bool SteeringActuatorRos::heldOrDropped(const ArrayMsg& msg, Nanoseconds latest, const std::string& topic,
-                                        RejectLog& rejects, std::function<void()> take) {
-  const Nanoseconds first = msg->samples.empty() ? latest : toNanoseconds(msg->samples.front().header.stamp);
-  switch (jumps_.classify(first, latest)) {
-    case ClockJumpGuard::Arrival::kDrop:
-      rejects.reject(name_, topic, "stamped " + formatSeconds(nanosecondsToSeconds(first)) +
-                                       ", a message of the pass before the clock jumped back");
-      return true;
-    case ClockJumpGuard::Arrival::kHold:
-      jumps_.hold(std::move(take));
-      return true;
-    case ClockJumpGuard::Arrival::kRestart:
-      restart();
-      return false;
-    case ClockJumpGuard::Arrival::kTake:
-      return false;
-  }
-  return false;
-}
-
-void SteeringActuatorRos::restart() {
-  torque_pub_.flush();
-  ++restarts_;
-  const std::string jump = jumps_.restarted();
-  ROS_WARN("%s: the ROS clock jumped back %s (a bag played in a loop?): restarting the steering actuator from its "
-           "initial state (pass %d; delay lines empty, integrator zero, runtime changes scheduled again)",
-           name_.c_str(), jump.c_str(), restarts_ + 1);
-  createStage();
-  jumps_.release();  // the new pass's first messages, held until the clock confirmed the jump
 }
 
 void SteeringActuatorRos::createStage() {

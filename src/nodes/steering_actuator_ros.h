@@ -37,13 +37,6 @@ class SteeringActuatorRos {
   /// Push the samples into the stage (a stale one is rejected by the core) and compute what they cover.
   void takeDesired(const DesiredSteeringArray::ConstPtr& msg);
   void takeMeasured(const MeasuredSteeringArray::ConstPtr& msg);
-  /// clock_jump.h: true if the message was held for a clock jump not yet seen, or dropped as one of
-  /// the pass before a jump; false if the caller takes it now (after a restart, if it begins a new pass).
-  template <typename ArrayMsg>
-  bool heldOrDropped(const ArrayMsg& msg, Nanoseconds latest, const std::string& topic, RejectLog& rejects,
-                     std::function<void()> take);
-  /// From the initial state, after the ROS clock jumped back (clock_jump.h); then the held messages.
-  void restart();
   void createStage();
   void produceAndFlush();
   /// The run has started (first input): announce the configured changes.
@@ -61,9 +54,8 @@ class SteeringActuatorRos {
   ros::WallTimer flush_timer_;
   RejectLog desired_rejects_, measured_rejects_;
   bool started_ = false;
-  ClockJumpGuard jumps_;
+  ClockJumpGuard jumps_;  // restarts the node from its initial state when the ROS clock jumps back
   Nanoseconds latest_desired_ = ClockJumpGuard::kNone, latest_measured_ = ClockJumpGuard::kNone;  // since the (re)start
-  int restarts_ = 0;
   boost::recursive_mutex reconfigure_mutex_;
   std::unique_ptr<dynamic_reconfigure::Server<SteeringActuatorConfig>> reconfigure_;
   SteeringActuatorConfig shown_;  // what the server shows: values in force, or accepted and scheduled
