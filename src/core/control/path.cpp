@@ -136,24 +136,37 @@ class WaypointPath : public Path {
     *second = a * m_[i] + b * m_[i + 1];
   }
 
-  /// The segment [x_i, x_(i+1)) holding x (x inside the waypoints): the last query's or a neighbour of it
-  /// first - queries walk along the lane, a dozen per tracker sample - else a binary search. The hint
-  /// changes only the cost, never the segment found (a relaxed atomic: a path is shared read-only).
+  /// The segment [x_i, x_(i+1)) holding x (x inside the waypoints), searched from the last query's:
+  /// queries walk along the lane, a dozen per tracker sample, most within a few segments of the last
+  /// one, so a galloping search (steps 1, 2, 4, ... away from the hint, then bisection of the last step)
+  /// costs O(log d) for a query d segments away and stays in the cache, where a bisection of the whole
+  /// lane cost O(log n) scattered reads on every bracket end the projection evaluates (±1 m: 170
+  /// segments of a 100,000-point lane). The hint changes only the cost, never the segment found (a
+  /// relaxed atomic: a path is shared read-only).
   int segmentOf(double x) const {
-    const int n = static_cast<int>(x_.size());
-    const int h = hint_.load(std::memory_order_relaxed);
-    for (int i : {h, h + 1, h - 1}) {
-      if (i >= 0 && i + 1 < n && x_[i] <= x && x < x_[i + 1]) {
-        if (i != h) hint_.store(i, std::memory_order_relaxed);
-        return i;
+    const int last = static_cast<int>(x_.size()) - 2;  // the last segment
+    const int h = std::clamp(hint_.load(std::memory_order_relaxed), 0, last);
+    int lo, hi;  // x_[lo] <= x < x_[hi]
+    if (x_[h] <= x) {
+      lo = h;
+      hi = h + 1;
+      for (int step = 1; x_[hi] <= x; step *= 2) {
+        lo = hi;
+        hi = std::min(hi + step, last + 1);
+      }
+    } else {
+      hi = h;
+      lo = h - 1;
+      for (int step = 1; x < x_[lo]; step *= 2) {
+        hi = lo;
+        lo = std::max(lo - step, 0);
       }
     }
-    int lo = 0, hi = n - 1;
     while (hi - lo > 1) {
-      const int mid = (lo + hi) / 2;
+      const int mid = lo + (hi - lo) / 2;
       (x_[mid] <= x ? lo : hi) = mid;
     }
-    hint_.store(lo, std::memory_order_relaxed);
+    if (lo != h) hint_.store(lo, std::memory_order_relaxed);
     return lo;
   }
 
