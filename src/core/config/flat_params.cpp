@@ -64,15 +64,21 @@ void FlatParams::flatten(const YAML::Node& node, const std::string& prefix, cons
 
 void FlatParams::setLeaf(const std::string& key, Entry entry) {
   // A later scalar replaces any earlier subtree at the same key and vice versa.
-  erasePrefix(key + ".");
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    if (it->first.rfind(key + ".", 0) == 0) {
+      it = entries_.erase(it);
+    } else {
+      ++it;
+    }
+  }
   entries_[key] = std::move(entry);
 }
 
 void FlatParams::erasePrefix(const std::string& prefix) {
-  // The keys starting with `prefix` are one contiguous run of the sorted map, from the first key not
-  // less than it (a scan of every key per leaf made reading a file quadratic in its keys).
-  auto it = entries_.lower_bound(prefix);
-  while (it != entries_.end() && it->first.compare(0, prefix.size(), prefix) == 0) it = entries_.erase(it);
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    if (it->first.rfind(prefix, 0) == 0) it = entries_.erase(it);
+    else ++it;
+  }
 }
 
 void FlatParams::overlayFlat(const FlatParams& other) {
@@ -93,11 +99,19 @@ void FlatParams::overlayAssignment(const std::string& assignment, const std::str
     throw ConfigError(origin + " " + key + ": value '" + text + "' is not valid YAML: " + e.msg);
   }
   if (value.IsMap()) {
+    YAML::Node wrapper;
+    wrapper[key] = value;
     // Keys given in dotted form: rebuild the nesting so flatten() sees them.
     flatten(value, key, origin);
     return;
   }
-  erasePrefix(key + ".");
+  for (auto it = entries_.begin(); it != entries_.end();) {
+    if (it->first.rfind(key + ".", 0) == 0) {
+      it = entries_.erase(it);
+    } else {
+      ++it;
+    }
+  }
   entries_[key] = Entry{value, origin};
 }
 
