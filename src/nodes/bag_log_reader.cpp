@@ -72,7 +72,8 @@ class BagStructure {
       fail(0, "the first line is not '#ROSBAG V2.0' (the format rosbag records)");
     }
     std::uint64_t index_pos = 0;
-    std::set<std::uint64_t> records, chunks, chunk_positions;
+    std::set<std::uint64_t> records, chunks, chunk_positions, connections;
+    std::vector<std::pair<std::uint64_t, std::uint64_t>> indexed_connections;  // (index data record, its connection)
     chunk_size_ = 0;  // no chunk yet: an index data record before any chunk indexes nothing
     for (std::uint64_t at = sizeof(version); at < size_;) {
       records.insert(at);
@@ -102,12 +103,27 @@ class BagStructure {
           }
         }
       }
-      if (op == std::string(1, '\x04')) checkIndexData(at, data_at + 4, data_len, fields);
-      // A connection record's data is a connection header, in the same field format (rosbag parses it).
-      if (op == std::string(1, '\x07')) readFields(at, data_at + 4, data_len, &fields);
+      if (op == std::string(1, '\x04')) {
+        checkIndexData(at, data_at + 4, data_len, fields);
+        indexed_connections.emplace_back(at, number(fields, "conn", at));
+      }
+      if (op == std::string(1, '\x07')) {
+        if (index_pos != 0 && at >= index_pos) connections.insert(number(fields, "conn", at));
+        // A connection record's data is a connection header, in the same field format (rosbag parses it).
+        readFields(at, data_at + 4, data_len, &fields);
+      }
       at = next;
     }
     if (index_pos != 0 && records.count(index_pos) == 0) fail(13, "index position " + std::to_string(index_pos) + " is not a record");
+    // rosbag looks up an index data record's connection among the index section's connection records and
+    // dereferences what it finds: one that names no connection there (and an entry with an invalid
+    // time, which rosbag reports by the connection's topic) was a null pointer read (SEGV in
+    // readConnectionIndexRecord200, found by fuzzing).
+    for (const auto& [record, connection] : indexed_connections) {
+      if (connections.count(connection) == 0) {
+        fail(record, "an index of connection " + std::to_string(connection) + ", which the bag's index section does not define");
+      }
+    }
     for (std::uint64_t chunk : chunk_positions) {
       if (chunks.count(chunk) == 0) fail(13, "chunk position " + std::to_string(chunk) + " is not a chunk");
     }
