@@ -186,6 +186,14 @@ class BagStructure {
     }
     const std::string entries = bytes(from, length);
     for (std::uint64_t i = 0; i < count; ++i) {
+      // An entry is <sec><nsec><offset>. rosbag builds a ros::Time of the first two, which normalises
+      // nsec >= 10^9 into the seconds and throws std::runtime_error when they overflow (found by fuzzing).
+      std::uint32_t nsec = 0;
+      std::memcpy(&nsec, entries.data() + 12 * i + 4, 4);
+      if (nsec >= 1000000000u) {
+        fail(at, "index entry " + std::to_string(i) + " has a time of " + std::to_string(nsec) +
+                     " ns past its second (at most 999,999,999)");
+      }
       std::uint32_t offset = 0;
       std::memcpy(&offset, entries.data() + 12 * i + 8, 4);
       if (offset + 8 > chunk_size_ || (chunk_walked_ && chunk_records_.count(offset) == 0)) {
@@ -251,6 +259,13 @@ GapLog readBagLog(const std::string& path, double max_rate) {
     throw InputError(path + ": not a readable bag: " + e.what());
   } catch (const ros::Exception& e) {  // ros::serialization's StreamOverrunException: a message cut short
     throw InputError(path + ": not a readable bag (a message does not match its type): " + e.what());
+  } catch (const LaneKeepingError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    // ros::Time and ros::Duration throw std::runtime_error ("Time is out of dual 32-bit range") for a time a
+    // corrupt bag states that does not fit; anything else is not the bag's fault and goes on.
+    if (std::string(e.what()).find("out of dual 32-bit range") == std::string::npos) throw;
+    throw InputError(path + ": not a readable bag (a time out of range): " + e.what());
   }
 }
 

@@ -162,13 +162,14 @@ TEST(BagLogReaderFuzzRegressions, CorruptOrTruncatedBagsAreInputErrorsNamingTheB
 // connection header whose field runs past it - a heap overflow in ros::Header::parse -, a truncated bag,
 // a prefixed version line, a message stating more samples than it holds - roscpp allocated 131 GB -, an index
 // entry pointing outside its chunk - rosbag read there: SEGV, found in CI -, an index of a connection the bag
-// does not define - rosbag read through a null pointer: SEGV at the 453,574th input of a 1,000,000-input run -)
-// is an InputError naming it.
+// does not define - rosbag read through a null pointer: SEGV at the 453,574th input of a 1,000,000-input run -,
+// an index entry whose nanoseconds overflow the seconds - ros::Time threw std::runtime_error -) is an
+// InputError naming it.
 TEST(BagLogReaderFuzzRegressions, EveryRegressionInputIsAnInputErrorNamingTheBag) {
   const std::string dir = std::string(LANE_KEEPING_SOURCE_DIR) + "/fuzz/regressions/bag_log/";
   for (const char* name : {"header_length_4gib.bag", "connection_header_field.bag", "truncated.bag",
                            "version_line_prefix.bag", "sample_count.bag", "index_offset.bag",
-                           "index_connection.bag"}) {
+                           "index_connection.bag", "index_time.bag"}) {
     const std::string error = bagError(dir + name);
     EXPECT_NE(error.find(dir + name + ": not a readable bag"), std::string::npos) << name << ": " << error;
   }
