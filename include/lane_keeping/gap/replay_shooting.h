@@ -14,6 +14,7 @@
 #include "lane_keeping/gap/log_signals.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/replay_trace.h"
+#include "lane_keeping/sim/etdrk4.h"
 #include "lane_keeping/sim/rk4.h"
 #include "lane_keeping/tire/tire.h"
 #include "lane_keeping/vehicle/single_track_model.h"
@@ -75,6 +76,19 @@ void integrate(F&& f, double t0, double t1, double h, Eigen::VectorXd& q, Rk4& r
   for (int k = 0; k < steps; ++k) {
     const double ta = t0 + k * dt;
     rk4.step([&](int stage, const Eigen::VectorXd& s, Eigen::VectorXd& d) {
+      f(ta + (stage == 0 ? 0.0 : (stage == 3 ? dt : 0.5 * dt)), s, d);
+    }, dt, q);
+  }
+}
+
+/// The same with the exponential integrator: f(t, q, n) writes N, the derivative minus L q.
+template <class F>
+void integrate(F&& f, double t0, double t1, double h, Eigen::VectorXd& q, Etdrk4& etd) {
+  const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) / h - 1e-9)));
+  const double dt = (t1 - t0) / steps;
+  for (int k = 0; k < steps; ++k) {
+    const double ta = t0 + k * dt;
+    etd.step([&](int stage, const Eigen::VectorXd& s, Eigen::VectorXd& d) {
       f(ta + (stage == 0 ? 0.0 : (stage == 3 ? dt : 0.5 * dt)), s, d);
     }, dt, q);
   }

@@ -134,8 +134,28 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
   const auto& times = log.times();
   // Stiff steering systems need a shorter step: RK4 is stable up to ~2.8 / (fastest rate).
   double step = tire_step;
+  // A linear column's spring-damper is the stiff part of the replay (k = 1e6 N m/rad, the fit's bound,
+  // asked ~40 RK4 steps per 10 ms sample): it is stepped exactly by exponential time differencing
+  // (sim/etdrk4.h), its torques taken out of the rest. L acts on (delta, delta', column, column'):
+  //   J_F delta'' = k (column - delta) + c (column' - delta') + ...,  J_c column'' = -k (...) - c (...) + ...
+  // and the step is then bounded by the tire and the friction alone. A progressive column's spring is
+  // nonlinear (its tangent stiffness grows with the twist) and keeps RK4 at the column's step.
   const SteeringParams& sp = model.steering();
-  if (sp.compliant()) {
+  const bool exponential = sp.compliant() && sp.column_stiffening_angle <= 0.0;
+  Eigen::MatrixXd linear = Eigen::MatrixXd::Zero(n, n);
+  if (exponential) {
+    const double k = sp.column_stiffness, c = sp.column_damping, jc = sp.column_inertia;
+    linear(0, 1) = 1.0;
+    linear(1, 0) = -k / JF, linear(1, 1) = -c / JF, linear(1, 2) = k / JF, linear(1, 3) = c / JF;
+    linear(2, 3) = 1.0;
+    linear(3, 0) = k / jc, linear(3, 1) = c / jc, linear(3, 2) = -k / jc, linear(3, 3) = -c / jc;
+  }
+  Etdrk4 etd(linear);
+  auto nonlinear = [&](double t, const Eigen::VectorXd& q, Eigen::VectorXd& q_dot) {
+    f(t, q, q_dot);
+    q_dot.noalias() -= linear * q;
+  };
+  if (sp.compliant() && !exponential) {
     // Column and wheel as two inertias on a spring-damper: the fastest mode is bounded by the
     // undamped frequency plus the damping rate. A step sized by the frequency alone let a
     // well-damped column (c / J_c = 1300 1/s at c = 26, J_c = 0.02) sit at RK4's limit with the
@@ -203,7 +223,11 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
       Eigen::VectorXd q = start;
       double t = t0;
       for (std::size_t i = first; i < last; ++i) {
-        integrate(f, t, times[i], h, q, rk4);
+        if (exponential) {
+          integrate(nonlinear, t, times[i], h, q, etd);
+        } else {
+          integrate(f, t, times[i], h, q, rk4);
+        }
         t = times[i];
         if (!q.allFinite() || std::fabs(q[0]) > limit) {
           for (std::size_t k = i; k < last; ++k) outputs(k - first, 0) = std::isfinite(q[0]) ? std::clamp(q[0], -limit, limit) : limit;
