@@ -96,7 +96,6 @@ class ClockJumpGuard {
     if (rebuild_) rebuild_();
     release();  // the new pass's first messages, held until the clock confirmed the jump
   }
-  int restarts() const { return restarts_; }
 
  private:
 
@@ -171,7 +170,7 @@ class ClockJumpGuard {
 
   std::string node_, what_, resets_;
   std::function<void()> flush_, rebuild_;
-  int restarts_ = 0;
+  int restarts_ = 0;  // passes started over (the warning numbers the pass)
   double latest_clock_ = -std::numeric_limits<double>::infinity();
   double jumped_from_ = 0.0, jumped_to_ = 0.0;
   ros::WallTime pending_wall_;    // when the clock jumped, until the new pass's first input restarts the node

@@ -142,18 +142,24 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
   // nonlinear (its tangent stiffness grows with the twist) and keeps RK4 at the column's step.
   const SteeringParams& sp = model.steering();
   const bool exponential = sp.compliant() && sp.column_stiffening_angle <= 0.0;
+  const double k = sp.column_stiffness, c = sp.column_damping, jc = sp.column_inertia;
   Eigen::MatrixXd linear = Eigen::MatrixXd::Zero(n, n);
   if (exponential) {
-    const double k = sp.column_stiffness, c = sp.column_damping, jc = sp.column_inertia;
     linear(0, 1) = 1.0;
     linear(1, 0) = -k / JF, linear(1, 1) = -c / JF, linear(1, 2) = k / JF, linear(1, 3) = c / JF;
     linear(2, 3) = 1.0;
     linear(3, 0) = k / jc, linear(3, 1) = c / jc, linear(3, 2) = -k / jc, linear(3, 3) = -c / jc;
   }
   Etdrk4 etd(linear);
+  // N = f - L q: the column's torque taken out as f computed it (twist = column - delta), so the two cancel
+  // to rounding of the torque, not of k delta / J_F.
   auto nonlinear = [&](double t, const Eigen::VectorXd& q, Eigen::VectorXd& q_dot) {
     f(t, q, q_dot);
-    q_dot.noalias() -= linear * q;
+    const double column_torque = k * (q[2] - q[0]) + c * (q[3] - q[1]);
+    q_dot[0] = 0.0;  // delta' = delta_dot, all in L
+    q_dot[1] -= column_torque / JF;
+    q_dot[2] = 0.0;
+    q_dot[3] += column_torque / jc;
   };
   if (sp.compliant() && !exponential) {
     // Column and wheel as two inertias on a spring-damper: the fastest mode is bounded by the

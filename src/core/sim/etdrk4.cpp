@@ -13,7 +13,8 @@ Etdrk4::Etdrk4(Eigen::MatrixXd linear) : l_(std::move(linear)) {
   if (!l_.allFinite()) throw std::invalid_argument("Etdrk4: the linear part is not finite");
   const Eigen::Index n = l_.rows();
   for (Eigen::Index i = 0; i < n; ++i) {
-    if ((l_.row(i).array() != 0.0).any() || (l_.col(i).array() != 0.0).any()) coupled_.push_back(i);
+    const bool coupled = (l_.row(i).array() != 0.0).any() || (l_.col(i).array() != 0.0).any();
+    (coupled ? coupled_ : plain_).push_back(i);
   }
   for (Eigen::VectorXd* v : {&nx_, &na_, &nb_, &nc_, &a_, &b_, &c_, &scratch_}) v->resize(n);
 }
@@ -67,29 +68,21 @@ Eigen::VectorXd balance(Eigen::MatrixXd& a) {
 }  // namespace
 
 Etdrk4::Phi Etdrk4::phiOfStep(double h) const {
-  // L is zero outside the coupled states' rows and columns, so its functions split: phi_k(0) = 1 / k!
-  // on the others.
-  const Eigen::Index n = l_.rows(), m = static_cast<Eigen::Index>(coupled_.size());
-  Phi out{Eigen::MatrixXd::Identity(n, n), Eigen::MatrixXd::Identity(n, n), 0.5 * Eigen::MatrixXd::Identity(n, n),
-          Eigen::MatrixXd::Identity(n, n) / 6.0};
-  if (m == 0) return out;
-  Eigen::MatrixXd block(m, m);
-  for (Eigen::Index i = 0; i < m; ++i) {
-    for (Eigen::Index j = 0; j < m; ++j) block(i, j) = h * l_(coupled_[i], coupled_[j]);
+  const Eigen::Index k = static_cast<Eigen::Index>(coupled_.size());
+  if (k == 0) return {};
+  Eigen::MatrixXd block(k, k);
+  for (Eigen::Index i = 0; i < k; ++i) {
+    for (Eigen::Index j = 0; j < k; ++j) block(i, j) = h * l_(coupled_[i], coupled_[j]);
   }
   const Eigen::VectorXd d = balance(block);
-  const Phi sub = phiFunctions(block);
+  Phi phi = phiFunctions(block);
   // phi(A) = D phi(D^-1 A D) D^-1.
-  for (Eigen::Index i = 0; i < m; ++i) {
-    for (Eigen::Index j = 0; j < m; ++j) {
-      const double s = d[i] / d[j];
-      out.exp(coupled_[i], coupled_[j]) = s * sub.exp(i, j);
-      out.phi1(coupled_[i], coupled_[j]) = s * sub.phi1(i, j);
-      out.phi2(coupled_[i], coupled_[j]) = s * sub.phi2(i, j);
-      out.phi3(coupled_[i], coupled_[j]) = s * sub.phi3(i, j);
+  for (Eigen::MatrixXd* f : {&phi.exp, &phi.phi1, &phi.phi2, &phi.phi3}) {
+    for (Eigen::Index i = 0; i < k; ++i) {
+      for (Eigen::Index j = 0; j < k; ++j) (*f)(i, j) *= d[i] / d[j];
     }
   }
-  return out;
+  return phi;
 }
 
 const Etdrk4::Matrices& Etdrk4::matricesFor(double h) {
