@@ -68,27 +68,16 @@ std::vector<TimeSegment> shootingIntervals(const std::vector<TimeSegment>& segme
 /// noise-free simulated log must not divide by zero).
 double noiseFor(const LogSignals& log, LogSignals::Channel c, double scale);
 
-/// Integrates q' = f(t, q) with RK4 from t0 to t1 in steps of at most h.
-template <class F>
-void integrate(F&& f, double t0, double t1, double h, Eigen::VectorXd& q, Rk4& rk4) {
+/// Integrates from t0 to t1 in equal steps of at most h with a stepper of the form
+/// step(stage_fn, dt, q) (Rk4, Etdrk4). For Rk4, f(t, q, d) writes the derivative; for Etdrk4 it
+/// writes N, the derivative minus L q.
+template <class F, class Stepper>
+void integrate(F&& f, double t0, double t1, double h, Eigen::VectorXd& q, Stepper& stepper) {
   const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) / h - 1e-9)));
   const double dt = (t1 - t0) / steps;
   for (int k = 0; k < steps; ++k) {
     const double ta = t0 + k * dt;
-    rk4.step([&](int stage, const Eigen::VectorXd& s, Eigen::VectorXd& d) {
-      f(ta + (stage == 0 ? 0.0 : (stage == 3 ? dt : 0.5 * dt)), s, d);
-    }, dt, q);
-  }
-}
-
-/// The same with the exponential integrator: f(t, q, n) writes N, the derivative minus L q.
-template <class F>
-void integrate(F&& f, double t0, double t1, double h, Eigen::VectorXd& q, Etdrk4& etd) {
-  const int steps = std::max(1, static_cast<int>(std::ceil((t1 - t0) / h - 1e-9)));
-  const double dt = (t1 - t0) / steps;
-  for (int k = 0; k < steps; ++k) {
-    const double ta = t0 + k * dt;
-    etd.step([&](int stage, const Eigen::VectorXd& s, Eigen::VectorXd& d) {
+    stepper.step([&](int stage, const Eigen::VectorXd& s, Eigen::VectorXd& d) {
       f(ta + (stage == 0 ? 0.0 : (stage == 3 ? dt : 0.5 * dt)), s, d);
     }, dt, q);
   }

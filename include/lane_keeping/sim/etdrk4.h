@@ -15,7 +15,8 @@
 /// matrix per step length (Van Loan 1978; Sidje's Expokit uses the same augmentation):
 ///   exp([[A, I, 0, 0], [0, 0, I, 0], [0, 0, 0, I], [0, 0, 0, 0]]) = [[e^A, phi1(A), phi2(A), phi3(A)], ...].
 /// Only the states L couples enter the exponential and the matrix products (a 4-state column in a
-/// 9-state replay: a 16 x 16 exponential rather than 36 x 36); on the others the step is RK4's. Cox & Matthews' scheme is fourth order when L commutes with N's Jacobian and at least second order
+/// 9-state replay: a 16 x 16 exponential rather than 36 x 36); on the others the step is RK4's.
+/// Cox & Matthews' scheme is fourth order when L commutes with N's Jacobian and at least second order
 /// otherwise (Hochbruck & Ostermann 2005); the replays use it for a column's spring-damper, whose
 /// coupling to the tire and friction terms is weak at the steps N allows.
 #include <vector>
@@ -28,8 +29,6 @@ class Etdrk4 {
  public:
   /// The linear part L (square, finite; std::invalid_argument otherwise).
   explicit Etdrk4(Eigen::MatrixXd linear);
-
-  const Eigen::MatrixXd& linear() const { return l_; }
 
   /// Advances x by h. n(stage, const VectorXd& x, VectorXd& n_of_x) evaluates N (the derivative minus
   /// L x): stage 0 at t, stages 1 and 2 at t + h/2, stage 3 at t + h. The matrices are cached for the
