@@ -4,6 +4,7 @@
 /// fit's parameters, uncertainty, bound flag and training / held-out scores.
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
@@ -51,6 +52,10 @@ struct CandidateFit {
 /// log-scale parameters), then golden section in the bracket around the best grid point.
 double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
                   int points, double current_loss);
+
+/// The range coordinateFit's second round searches around `value`: a third to three times it for a
+/// log-scale parameter, else +-15 % of the parameter's range; within its bounds.
+std::pair<double, double> narrowedRange(const EffectParameter& p, double value);
 
 /// Robust low-dimensional fit: coordinate-wise grid + golden section over the whole bounds, then a
 /// second round in a narrowed range. (Gauss-Newton alone crawls here: stick-slip friction and

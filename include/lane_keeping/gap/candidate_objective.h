@@ -2,8 +2,11 @@
 /// The loss a candidate's fit minimises (diagnosis.h, step 3): the replays of the subsystems the
 /// candidate changes, run with its parameters, over the training data; optionally with the closed
 /// loop of each fitted configuration required to stay within the logged bounds (bounded_loop.h).
+#include <map>
+#include <mutex>
 #include <set>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
@@ -39,24 +42,33 @@ class CandidateObjective {
 
   /// Sum of squared residuals. Under a stability requirement a point whose closed loop diverges ranks
   /// after every bounded one, and the later it diverges the better — so that a coordinate search
-  /// started in the unstable region finds its way out.
+  /// started in the unstable region finds its way out. Remembered per theta until the requirement
+  /// changes: a coordinate search revisits points (the start of each line, a line's grid again after a
+  /// first move along it), and under a requirement each visit costs a closed-loop run.
   double loss(const std::vector<double>& theta) const;
+
+  /// Whether the closed loop at theta leaves requirement r's bounds (boundsCheck), remembered per theta
+  /// and requirement.
+  LoopDivergence bounds(const std::vector<double>& theta, const BoundedLoopRequirement& r) const;
 
   const std::set<std::string>& subsystems() const { return subsystems_; }
   const CandidateEffect& effect() const { return effect_; }
 
   /// The closed loop must stay bounded on these logs over these horizons, its steering angle within
   /// `max_steering_angle` and its torque command within `max_torque`.
-  void requireStability(std::vector<BoundedLoopRequirement> requirements) { stable_on_ = std::move(requirements); }
+  void requireStability(std::vector<BoundedLoopRequirement> requirements);
 
  private:
   static constexpr double kUnstableLoss = 1e100;
 
   void replayResiduals(const ConfigChange& change, std::vector<double>* out) const;
 
-  /// 0 if the closed loop under `change` stays bounded on every required log, else 1 - (time it took
-  /// to diverge) / horizon, in (0, 1].
-  double divergence(const ConfigChange& change) const;
+  /// 0 if the closed loop at theta stays bounded on every required log, else 1 - (time it took to
+  /// diverge) / horizon, in (0, 1].
+  double divergence(const std::vector<double>& theta) const;
+
+  /// A requirement as a memo key: the log and its bounds.
+  using RequirementKey = std::tuple<const LogSignals*, const SimConfig*, double, double, double>;
 
   std::vector<BoundedLoopRequirement> stable_on_;
   const CandidateEffect& effect_;
@@ -65,6 +77,11 @@ class CandidateObjective {
   ReplayOptions options_;
   const Sigma1Cache& nominal_sigma1_;
   std::set<std::string> subsystems_;
+  // Memos (the evaluations are deterministic, so a remembered value is the value). Fits call loss()
+  // from one thread; Ceres may evaluate residuals() from several, hence the lock.
+  mutable std::mutex memo_mutex_;
+  mutable std::map<std::vector<double>, double> losses_;
+  mutable std::map<std::pair<std::vector<double>, RequirementKey>, LoopDivergence> bounds_;
 };
 
 }  // namespace diagnosis

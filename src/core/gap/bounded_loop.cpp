@@ -37,7 +37,7 @@ std::vector<BoundedLoopRequirement> stabilityRequirements(const CandidateObjecti
     for (double delta : log->samples(LogSignals::kDelta)) logged_angle = std::max(logged_angle, std::fabs(delta));
     for (double torque : log->samples(LogSignals::kTorque)) logged_torque = std::max(logged_torque, std::fabs(torque));
     const BoundedLoopRequirement required{log, run->config.get(), span, 1.5 * logged_angle + 0.02, 2.0 * logged_torque + 5.0};
-    const LoopDivergence d = boundsCheck(objective.changeFor(theta), required);
+    const LoopDivergence d = objective.bounds(theta, required);
     if (!d.diverged || boundsCheck(nullptr, required).diverged) continue;
     requirements.push_back(required);
     if (!note->empty()) continue;

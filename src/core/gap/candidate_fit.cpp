@@ -69,6 +69,12 @@ double lineSearch(const CandidateObjective& objective, std::vector<double>& thet
   return current_loss;
 }
 
+std::pair<double, double> narrowedRange(const EffectParameter& p, double value) {
+  if (p.log_scale) return {std::max(p.lower, value / 3.0), std::min(p.upper, value * 3.0)};
+  const double span = 0.15 * (p.upper - p.lower);
+  return {std::max(p.lower, value - span), std::min(p.upper, value + span)};
+}
+
 std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta) {
   const auto& params = objective.effect().params;
   if (theta.empty()) {
@@ -78,17 +84,7 @@ std::vector<double> coordinateFit(const CandidateObjective& objective, std::vect
   for (int round = 0; round < (params.size() > 1 ? 2 : 1); ++round) {
     for (std::size_t j = 0; j < params.size(); ++j) {
       const auto& p = params[j];
-      double lo = p.lower, hi = p.upper;
-      if (round > 0) {  // narrow the range around the current value
-        if (p.log_scale) {
-          lo = std::max(p.lower, theta[j] / 3.0);
-          hi = std::min(p.upper, theta[j] * 3.0);
-        } else {
-          const double span = 0.15 * (p.upper - p.lower);
-          lo = std::max(p.lower, theta[j] - span);
-          hi = std::min(p.upper, theta[j] + span);
-        }
-      }
+      const auto [lo, hi] = round > 0 ? narrowedRange(p, theta[j]) : std::make_pair(p.lower, p.upper);
       loss = lineSearch(objective, theta, j, lo, hi, round == 0 ? 13 : 7, loss);
     }
   }

@@ -41,18 +41,47 @@ SimConfig CandidateObjective::configFor(const std::vector<double>& theta) const 
 
 bool CandidateObjective::residuals(const std::vector<double>& theta, std::vector<double>* out) const {
   const ConfigChange change = changeFor(theta);
-  if (!configFor(theta).problems().empty() || divergence(change) > 0.0) return false;
+  if (!configFor(theta).problems().empty() || divergence(theta) > 0.0) return false;
   replayResiduals(change, out);
   return true;
 }
 
 double CandidateObjective::loss(const std::vector<double>& theta) const {
-  if (!configFor(theta).problems().empty()) return std::numeric_limits<double>::infinity();
-  const ConfigChange change = changeFor(theta);
-  if (const double d = divergence(change); d > 0.0) return kUnstableLoss * (1.0 + d);
-  std::vector<double> r;
-  replayResiduals(change, &r);
-  return sumOfSquares(r);
+  {
+    std::lock_guard<std::mutex> lock(memo_mutex_);
+    if (const auto it = losses_.find(theta); it != losses_.end()) return it->second;
+  }
+  double value;
+  if (!configFor(theta).problems().empty()) {
+    value = std::numeric_limits<double>::infinity();
+  } else if (const double d = divergence(theta); d > 0.0) {
+    value = kUnstableLoss * (1.0 + d);
+  } else {
+    std::vector<double> r;
+    replayResiduals(changeFor(theta), &r);
+    value = sumOfSquares(r);
+  }
+  std::lock_guard<std::mutex> lock(memo_mutex_);
+  losses_.emplace(theta, value);
+  return value;
+}
+
+void CandidateObjective::requireStability(std::vector<BoundedLoopRequirement> requirements) {
+  stable_on_ = std::move(requirements);
+  std::lock_guard<std::mutex> lock(memo_mutex_);
+  losses_.clear();  // the loss depends on the requirement; the bounds checks do not
+}
+
+LoopDivergence CandidateObjective::bounds(const std::vector<double>& theta, const BoundedLoopRequirement& r) const {
+  auto key = std::make_pair(theta, RequirementKey{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque});
+  {
+    std::lock_guard<std::mutex> lock(memo_mutex_);
+    if (const auto it = bounds_.find(key); it != bounds_.end()) return it->second;
+  }
+  const LoopDivergence d = boundsCheck(changeFor(theta), r);
+  std::lock_guard<std::mutex> lock(memo_mutex_);
+  bounds_.emplace(std::move(key), d);
+  return d;
 }
 
 void CandidateObjective::replayResiduals(const ConfigChange& change, std::vector<double>* out) const {
@@ -60,9 +89,9 @@ void CandidateObjective::replayResiduals(const ConfigChange& change, std::vector
   *out = fitResiduals(evaluate(change, data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr));
 }
 
-double CandidateObjective::divergence(const ConfigChange& change) const {
+double CandidateObjective::divergence(const std::vector<double>& theta) const {
   for (const BoundedLoopRequirement& s : stable_on_) {
-    const LoopDivergence d = boundsCheck(change, s);
+    const LoopDivergence d = bounds(theta, s);
     if (d.diverged) return std::clamp(1.0 - d.time / s.horizon, 1e-6, 1.0);
   }
   return 0.0;

@@ -1,0 +1,99 @@
+// The candidate objective remembers losses and closed-loop checks (a coordinate search revisits
+// points, and under a stability requirement each visit is a closed-loop run): a remembered value must
+// be the value, and a loss remembered without a requirement must not answer for one with it.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gap_benchmark/benchmark_cases.h"
+#include "lane_keeping/gap/candidate_objective.h"
+#include "lane_keeping/gap/diagnosis_data.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+namespace {
+
+BenchmarkCase findCase(const std::string& id) {
+  for (const auto& c : benchmarkCases()) {
+    if (c.id == id) return c;
+  }
+  throw std::runtime_error("no case " + id);
+}
+
+struct Fixture {
+  std::vector<RunData> runs;
+  std::vector<Dataset> data;
+  Evaluation nominal;
+  std::set<std::string> available;
+  SimConfig config;
+
+  Fixture() {
+    BenchmarkCase c = findCase("steering_compliance-small-sinusoid");
+    c.truth_overlay.push_back("simulation.duration=6");
+    GapRun run;
+    run.log = generateBenchmarkLog(c, SensorNoise{}, 200.0);
+    run.config = benchmarkNominal(c.manoeuvre);
+    run.config.simulation.duration = 6.0;
+    config = run.config;
+    runs = prepareRuns({run});
+    data = wholeLogs(runs, 0.5);
+    available = availableSubsystems(runs);
+    nominal = evaluate(nullptr, data, available, ReplayOptions{});
+  }
+
+  BoundedLoopRequirement requirement() const {
+    const LogSignals& log = *runs.front().log;
+    double angle = 0.0, torque = 0.0;
+    for (double d : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(d));
+    for (double t : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(t));
+    return {&log, runs.front().config.get(), log.end() - log.start(), 1.5 * angle + 0.02, 2.0 * torque + 5.0};
+  }
+};
+
+const CandidateEffect& wheelSensorColumn() {
+  for (const auto& e : candidateEffects()) {
+    if (e.name == "steering_compliance" && e.form == "wheel_sensor") return e;
+  }
+  throw std::runtime_error("no wheel_sensor column");
+}
+
+TEST(CandidateObjective, ARememberedLossIsTheLossAndARequirementIsPartOfIt) {
+  const Fixture f;
+  const CandidateEffect& column = wheelSensorColumn();
+  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  // Stiffness, damping, inertia: a softer column than the truth's, and one whose closed loop rings up
+  // within half a second (k = 1.6e5 N m/rad against the actuator's 10 kHz PD loop).
+  const std::vector<double> bounded{2000.0, 11.16, 0.0458}, unbounded{164265.0, 11.16, 0.0458};
+
+  const double first = objective.loss(bounded);
+  ASSERT_TRUE(std::isfinite(first));
+  EXPECT_EQ(objective.loss(bounded), first);
+  CandidateObjective fresh(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  EXPECT_EQ(fresh.loss(bounded), first);
+
+  const double open_loop = objective.loss(unbounded);
+  ASSERT_TRUE(std::isfinite(open_loop));
+  ASSERT_LT(open_loop, 1e90);  // the replays alone do not rule it out
+
+  const BoundedLoopRequirement r = f.requirement();
+  const LoopDivergence d = objective.bounds(unbounded, r);
+  ASSERT_TRUE(d.diverged) << "the stiff column's closed loop stayed bounded";
+  const LoopDivergence again = objective.bounds(unbounded, r);
+  EXPECT_EQ(again.time, d.time);
+  EXPECT_EQ(boundsCheck(objective.changeFor(unbounded), r).time, d.time);
+  EXPECT_FALSE(objective.bounds(bounded, r).diverged);
+
+  objective.requireStability({r});
+  const double required = objective.loss(unbounded);
+  EXPECT_GE(required, 1e100) << "a loss remembered without the requirement answered for it";
+  EXPECT_DOUBLE_EQ(required, 1e100 * (1.0 + std::clamp(1.0 - d.time / r.horizon, 1e-6, 1.0)));
+  EXPECT_EQ(objective.loss(bounded), first);  // bounded: the requirement adds nothing
+
+  objective.requireStability({});
+  EXPECT_EQ(objective.loss(unbounded), open_loop);
+}
+
+}  // namespace
+}  // namespace diagnosis
+}  // namespace lane_keeping
