@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -39,11 +40,10 @@ int main(int argc, char** argv) {
   std::printf("%-10s %10s %14s %22s\n", "log rate", "rows", "wall time", "verdict");
   for (const double rate : rates) {
     BenchmarkCase c;
-    for (const auto& candidate : benchmarkCases()) {
-      if (candidate.id == case_id) c = candidate;
-    }
-    if (c.id.empty()) {
-      std::fprintf(stderr, "lk_bench_gap: no benchmark case '%s' (the ids are those of lk_gap_benchmark: DIR/cases.json)\n", case_id.c_str());
+    try {
+      c = benchmarkCase(case_id);
+    } catch (const std::invalid_argument& e) {
+      std::fprintf(stderr, "lk_bench_gap: %s\n", e.what());
       return 2;
     }
     c.truth_overlay.push_back("simulation.duration=" + std::to_string(duration));

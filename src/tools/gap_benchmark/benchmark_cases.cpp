@@ -3,6 +3,8 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <stdexcept>
+#include <string>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
@@ -326,6 +328,13 @@ std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre) {
     }
   }
   return cases;
+}
+
+BenchmarkCase benchmarkCase(const std::string& id) {
+  for (const auto& c : benchmarkCases()) {
+    if (c.id == id) return c;
+  }
+  throw std::invalid_argument("no benchmark case '" + id + "' (the ids are those of lk_gap_benchmark: DIR/cases.json)");
 }
 
 BenchmarkCase heldoutRunOf(const BenchmarkCase& c) {

@@ -55,6 +55,8 @@ SimConfig benchmarkNominal(const std::string& manoeuvre);
 /// All cases: 11 effects x 2 magnitudes x 2 manoeuvres, `none_per_manoeuvre` no-effect logs per
 /// manoeuvre, and 3 out-of-list effects x 2 magnitudes x 2 manoeuvres.
 std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre = 6);
+/// The case of benchmarkCases() with this id; std::invalid_argument naming the id if there is none.
+BenchmarkCase benchmarkCase(const std::string& id);
 /// The independent family, made with choices the candidates did not make (docs/gap.md): effects where
 /// real cars have them (a localisation bias the log records too, a column sensed on the motor side, a
 /// road bank the accelerometer does not sense), other path shapes (a bend, a straight road with initial

@@ -14,13 +14,6 @@ namespace lane_keeping {
 namespace diagnosis {
 namespace {
 
-BenchmarkCase findCase(const std::string& id) {
-  for (const auto& c : benchmarkCases()) {
-    if (c.id == id) return c;
-  }
-  throw std::runtime_error("no case " + id);
-}
-
 struct Fixture {
   std::vector<RunData> runs;
   std::vector<Dataset> data;
@@ -29,7 +22,7 @@ struct Fixture {
   SimConfig config;
 
   Fixture() {
-    BenchmarkCase c = findCase("steering_compliance-small-sinusoid");
+    BenchmarkCase c = benchmarkCase("steering_compliance-small-sinusoid");
     c.truth_overlay.push_back("simulation.duration=6");
     GapRun run;
     run.log = generateBenchmarkLog(c, SensorNoise{}, 200.0);

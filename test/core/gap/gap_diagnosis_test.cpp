@@ -11,17 +11,10 @@
 namespace lane_keeping {
 namespace {
 
-BenchmarkCase findCase(const std::string& id) {
-  for (const auto& c : benchmarkCases()) {
-    if (c.id == id) return c;
-  }
-  throw std::runtime_error("no case " + id);
-}
-
 /// A shortened benchmark case and its nominal configuration.
 GapReport diagnoseCase(const std::string& id, const std::vector<std::string>& effects, double duration = 16.0,
                        double log_rate = 200.0) {
-  BenchmarkCase c = findCase(id);
+  BenchmarkCase c = benchmarkCase(id);
   c.truth_overlay.push_back("simulation.duration=" + std::to_string(duration));
   const GapLog log = generateBenchmarkLog(c, SensorNoise{}, log_rate);
   SimConfig nominal = benchmarkNominal(c.manoeuvre);
