@@ -46,8 +46,19 @@ bool CandidateObjective::residuals(const std::vector<double>& theta, std::vector
   return true;
 }
 
+namespace {
+
+/// A point the memos may hold: std::map orders its keys with <, under which a NaN is equivalent to
+/// every number, so a point with one would find another point's value.
+bool memoizable(const std::vector<double>& theta) {
+  return std::none_of(theta.begin(), theta.end(), [](double v) { return std::isnan(v); });
+}
+
+}  // namespace
+
 double CandidateObjective::loss(const std::vector<double>& theta) const {
-  {
+  const bool memo = memoizable(theta);
+  if (memo) {
     std::lock_guard<std::mutex> lock(memo_mutex_);
     if (const auto it = losses_.find(theta); it != losses_.end()) return it->second;
   }
@@ -61,8 +72,10 @@ double CandidateObjective::loss(const std::vector<double>& theta) const {
     replayResiduals(changeFor(theta), &r);
     value = sumOfSquares(r);
   }
-  std::lock_guard<std::mutex> lock(memo_mutex_);
-  losses_.emplace(theta, value);
+  if (memo) {
+    std::lock_guard<std::mutex> lock(memo_mutex_);
+    losses_.emplace(theta, value);
+  }
   return value;
 }
 
@@ -73,6 +86,9 @@ void CandidateObjective::requireStability(std::vector<BoundedLoopRequirement> re
 }
 
 LoopDivergence CandidateObjective::bounds(const std::vector<double>& theta, const BoundedLoopRequirement& r) const {
+  if (!memoizable(theta) || !memoizable({r.horizon, r.max_steering_angle, r.max_torque})) {
+    return boundsCheck(changeFor(theta), r);
+  }
   auto key = std::make_pair(theta, RequirementKey{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque});
   {
     std::lock_guard<std::mutex> lock(memo_mutex_);

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/candidate_objective.h"
@@ -64,6 +65,10 @@ TEST(CandidateObjective, ARememberedLossIsTheLossAndARequirementIsPartOfIt) {
   EXPECT_EQ(objective.loss(bounded), first);
   CandidateObjective fresh(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
   EXPECT_EQ(fresh.loss(bounded), first);
+  // A NaN compares equivalent to every number in the memo's ordering: such a point must be evaluated
+  // (an invalid configuration), never given the remembered loss of the point it would match.
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(std::isfinite(objective.loss({nan, bounded[1], bounded[2]})));
 
   const double open_loop = objective.loss(unbounded);
   ASSERT_TRUE(std::isfinite(open_loop));
