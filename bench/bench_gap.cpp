@@ -1,10 +1,12 @@
 // Benchmark of the gap diagnosis (issue #5): wall time to diagnose a 60 s log sampled at 100 Hz and at
 // 1 kHz with all eleven candidates (held-out blocks, closed-loop replay included), on the threads given.
 // The logs are generated like the withheld-effect benchmark (steering friction hidden, sensor noise).
-//   lk_bench_gap [--threads N] [--duration S] [--rate HZ] [--effects a,b,...] [--case ID]
-// (--rate: one log rate instead of both; --effects: fit only these candidates, to time one of them;
+//   lk_bench_gap [--threads N] [--duration S] [--rate HZ] [--effects a,b,...] [--case ID] [--coarse-stride K]
+// (--coarse-stride: DiagnosisOptions::coarse_fit_stride, 1 to time the fits searching all the data;
+// --rate: one log rate instead of both; --effects: fit only these candidates, to time one of them;
 // --case: another benchmark case than steering_friction-large-lane_change, e.g. a column log whose
 // winning fit must be held to a bounded closed loop.)
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -24,19 +26,22 @@ int main(int argc, char** argv) {
   std::vector<double> rates{100.0, 1000.0};
   std::vector<std::string> effects;
   std::string case_id = "steering_friction-large-lane_change";
+  std::size_t coarse_stride = DiagnosisOptions{}.coarse_fit_stride;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string arg = argv[i];
     if (arg == "--threads") threads = std::atoi(argv[i + 1]);
     if (arg == "--duration") duration = std::atof(argv[i + 1]);
     if (arg == "--rate") rates = {std::atof(argv[i + 1])};
     if (arg == "--case") case_id = argv[i + 1];
+    if (arg == "--coarse-stride") coarse_stride = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
     if (arg == "--effects") {
       std::stringstream list(argv[i + 1]);
       for (std::string name; std::getline(list, name, ',');) effects.push_back(name);
     }
   }
-  std::printf("lane_keeping gap diagnosis benchmark: %g s log of %s, %s, %d thread(s)\n\n", duration, case_id.c_str(),
-              effects.empty() ? "all 11 candidates" : "selected candidates", threads);
+  std::printf("lane_keeping gap diagnosis benchmark: %g s log of %s, %s, %d thread(s), coarse fit stride %zu\n\n",
+              duration, case_id.c_str(), effects.empty() ? "all 11 candidates" : "selected candidates", threads,
+              coarse_stride);
   std::printf("%-10s %10s %14s %22s\n", "log rate", "rows", "wall time", "verdict");
   for (const double rate : rates) {
     BenchmarkCase c;
@@ -53,6 +58,7 @@ int main(int argc, char** argv) {
     DiagnosisOptions options;
     options.threads = threads;
     options.effects = effects;
+    options.coarse_fit_stride = coarse_stride;
     const auto start = std::chrono::steady_clock::now();
     const GapReport report = diagnoseGap(nominal, {log}, {}, options);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

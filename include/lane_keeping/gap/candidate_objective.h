@@ -51,6 +51,14 @@ class CandidateObjective {
   /// and requirement.
   LoopDivergence bounds(const std::vector<double>& theta, const BoundedLoopRequirement& r) const;
 
+  /// The same loss over other data (such as decimatedData's coarse subset of this one's), with no
+  /// stability requirement and nothing remembered. `data` must outlive the result.
+  CandidateObjective on(const std::vector<Dataset>& data) const {
+    return CandidateObjective(effect_, nominal_, data, options_, nominal_sigma1_, subsystems_);
+  }
+  const std::vector<Dataset>& data() const { return data_; }
+  const ReplayOptions& replayOptions() const { return options_; }
+
   const std::set<std::string>& subsystems() const { return subsystems_; }
   const CandidateEffect& effect() const { return effect_; }
 

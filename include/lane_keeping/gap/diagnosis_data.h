@@ -66,6 +66,12 @@ struct DataSplit {
 DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<RunData>& held_runs,
                     const DiagnosisOptions& options);
 
+/// Coarse data for a fit's first search (candidate_fit.h): each data set's segments cut into pieces of
+/// `piece` seconds, of which every `stride`-th is kept (counted per data set from its first piece, so
+/// every set keeps at least one and the sets stay in order, as the nominal sigma1 cache indexes them).
+/// The pieces are spread over the whole log, so the coarse data see every part of the manoeuvre.
+std::vector<Dataset> decimatedData(const std::vector<Dataset>& data, double piece, std::size_t stride);
+
 /// The excitation kinds of a log, each as its magnitude at every sample (the names of DataSplit::coverage).
 std::map<std::string, std::vector<double>> excitations(const LogSignals& log, const SimConfig& config);
 

@@ -9,23 +9,75 @@
 #include <cstdlib>
 #include <limits>
 
+#include "lane_keeping/gap/diagnosis_data.h"
+
 namespace lane_keeping {
 namespace diagnosis {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
-/// Ceres functor over the transformed parameters.
+/// Ceres functor over the free ones of the transformed parameters (the others held at `x`).
 struct CeresResiduals {
   const CandidateObjective* objective;
+  std::vector<double> x;
+  std::vector<std::size_t> free;
   std::size_t count;
   bool operator()(double const* const* parameters, double* residuals) const {
+    std::vector<double> at = x;
+    for (std::size_t k = 0; k < free.size(); ++k) at[free[k]] = parameters[0][k];
     std::vector<double> r;
-    if (!objective->residuals(objective->toTheta(parameters[0]), &r) || r.size() != count) return false;
+    if (!objective->residuals(objective->toTheta(at.data()), &r) || r.size() != count) return false;
     std::copy(r.begin(), r.end(), residuals);
     return true;
   }
 };
+
+/// Levenberg-Marquardt (Ceres, central differences) from theta, at most `iterations` steps; theta
+/// itself when no step lowers the loss. A parameter at a bound of its range is held there: the
+/// coordinate search put it there as the best point of its line, so the loss falls outward, and LM's
+/// steps projected back onto the box were rejected one after the other (a fit on a log without the
+/// effect spent five iterations, ~45 % of its time, without moving).
+std::vector<double> polish(const CandidateObjective& objective, std::vector<double> theta, int iterations) {
+  const CandidateEffect& effect = objective.effect();
+  const std::vector<double> x = objective.toFitSpace(theta);
+  std::vector<std::size_t> free;
+  std::vector<double> lower, upper;
+  for (std::size_t i = 0; i < x.size(); ++i) {
+    const auto& p = effect.params[i];
+    const double lo = p.log_scale ? std::log(p.lower) : p.lower, hi = p.log_scale ? std::log(p.upper) : p.upper;
+    if (std::min(x[i] - lo, hi - x[i]) <= 1e-9 * (hi - lo)) continue;
+    free.push_back(i);
+    lower.push_back(lo);
+    upper.push_back(hi);
+  }
+  std::vector<double> r0;
+  if (free.empty() || !objective.residuals(theta, &r0)) return theta;
+  std::vector<double> y;
+  for (std::size_t i : free) y.push_back(x[i]);
+  auto* cost = new ceres::DynamicNumericDiffCostFunction<CeresResiduals, ceres::CENTRAL>(
+      new CeresResiduals{&objective, x, free, r0.size()});
+  cost->AddParameterBlock(static_cast<int>(y.size()));
+  cost->SetNumResiduals(static_cast<int>(r0.size()));
+  ceres::Problem problem;
+  problem.AddResidualBlock(cost, nullptr, y.data());
+  for (std::size_t k = 0; k < y.size(); ++k) {
+    problem.SetParameterLowerBound(y.data(), static_cast<int>(k), lower[k]);
+    problem.SetParameterUpperBound(y.data(), static_cast<int>(k), upper[k]);
+  }
+  ceres::Solver::Options solver;
+  solver.linear_solver_type = ceres::DENSE_QR;
+  solver.max_num_iterations = iterations;
+  solver.function_tolerance = 1e-6;
+  solver.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(solver, &problem, &summary);
+  std::vector<double> moved = x;
+  for (std::size_t k = 0; k < free.size(); ++k) moved[free[k]] = y[k];
+  const std::vector<double> polished = objective.toTheta(moved.data());
+  if (std::getenv("LK_GAP_DEBUG")) std::fprintf(stderr, "%s: %s\n", effect.name.c_str(), summary.BriefReport().c_str());
+  return objective.loss(polished) < objective.loss(theta) ? polished : theta;
+}
 
 }  // namespace
 
@@ -91,36 +143,16 @@ std::vector<double> coordinateFit(const CandidateObjective& objective, std::vect
   return theta;
 }
 
-std::vector<double> leastSquaresFit(const CandidateObjective& objective) {
-  const CandidateEffect& effect = objective.effect();
-  std::vector<double> theta = coordinateFit(objective);
-  if (effect.profile) return theta;
-  // Polish with Levenberg-Marquardt (Ceres, central differences) from the coordinate optimum.
-  std::vector<double> x = objective.toFitSpace(theta);
-  std::vector<double> r0;
-  if (!objective.residuals(theta, &r0)) return theta;
-  auto* cost = new ceres::DynamicNumericDiffCostFunction<CeresResiduals, ceres::CENTRAL>(
-      new CeresResiduals{&objective, r0.size()});
-  cost->AddParameterBlock(static_cast<int>(x.size()));
-  cost->SetNumResiduals(static_cast<int>(r0.size()));
-  ceres::Problem problem;
-  problem.AddResidualBlock(cost, nullptr, x.data());
-  for (std::size_t i = 0; i < x.size(); ++i) {
-    const auto& p = effect.params[i];
-    problem.SetParameterLowerBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.lower) : p.lower);
-    problem.SetParameterUpperBound(x.data(), static_cast<int>(i), p.log_scale ? std::log(p.upper) : p.upper);
-  }
-  ceres::Solver::Options solver;
-  solver.linear_solver_type = ceres::DENSE_QR;
-  solver.max_num_iterations = 4;
-  solver.function_tolerance = 1e-6;
-  solver.logging_type = ceres::SILENT;
-  ceres::Solver::Summary summary;
-  ceres::Solve(solver, &problem, &summary);
-  const std::vector<double> polished = objective.toTheta(x.data());
-  if (std::getenv("LK_GAP_DEBUG")) std::fprintf(stderr, "%s: %s\n", effect.name.c_str(), summary.BriefReport().c_str());
-  if (objective.loss(polished) < objective.loss(theta)) theta = polished;
-  return theta;
+std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride) {
+  if (objective.effect().profile) return coordinateFit(objective);
+  if (coarse_stride <= 1) return polish(objective, coordinateFit(objective), 4);
+  // Coarse to fine: the search (~20 evaluations per parameter and round) and the polish run on a
+  // coarse_stride-th of the data and find the optimum's neighbourhood; two steps on all of it move
+  // to the optimum of all the data.
+  const std::vector<Dataset> coarse =
+      decimatedData(objective.data(), objective.replayOptions().chassis_horizon, coarse_stride);
+  const CandidateObjective coarse_objective = objective.on(coarse);
+  return polish(objective, polish(coarse_objective, coordinateFit(coarse_objective), 4), 2);
 }
 
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
@@ -199,7 +231,7 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const FitContext& conte
                                context.available);
   std::vector<double> theta;
   try {
-    theta = leastSquaresFit(objective);
+    theta = leastSquaresFit(objective, options.coarse_fit_stride);
     if (context.closed_loop_checks) {
       fit.unbounded_on = stabilityRequirements(objective, theta, *context.train, &fit.stability_note);
     }

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
@@ -48,6 +49,22 @@ std::set<std::string> availableSubsystems(const std::vector<RunData>& runs) {
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin) {
   std::vector<Dataset> out;
   for (const auto& run : runs) out.push_back({run.log, run.config, {{run.log->start() + margin, run.log->end() + 1e-9}}});
+  return out;
+}
+
+std::vector<Dataset> decimatedData(const std::vector<Dataset>& data, double piece, std::size_t stride) {
+  if (!(piece > 0.0) || stride == 0) throw std::invalid_argument("decimatedData: piece and stride must be positive");
+  std::vector<Dataset> out;
+  for (const Dataset& set : data) {
+    Dataset coarse{set.log, set.config, {}};
+    std::size_t index = 0;
+    for (const TimeSegment& s : set.segments) {
+      for (double a = s.t0; a < s.t1 - 1e-9; a += piece, ++index) {
+        if (index % stride == 0) coarse.segments.push_back({a, std::min(a + piece, s.t1)});
+      }
+    }
+    out.push_back(std::move(coarse));
+  }
   return out;
 }
 

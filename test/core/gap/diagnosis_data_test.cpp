@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 
 #include "lane_keeping/gap/diagnosis_data.h"
 
@@ -78,6 +79,55 @@ TEST(DataSplit, GivenHeldOutRunsScoreAndTheRestTrains) {
   EXPECT_EQ(split.method, "held-out runs");
   EXPECT_EQ(split.train[0].log->log().source, "a.csv");
   EXPECT_EQ(split.held[0].log->log().source, "b.csv");
+}
+
+// A fit's coarse data (candidate_fit.h): every k-th chassis-horizon piece of each set, spread over the
+// whole of it, each set keeping at least its first piece.
+TEST(DecimatedData, KeepsEveryKthPieceOfEachSetSpreadOverTheSegments) {
+  const DataSplit split = splitData({run(transientLog("a.csv"))}, {}, DiagnosisOptions{});
+  ASSERT_EQ(split.train.size(), 1u);
+  const std::vector<TimeSegment>& segments = split.train[0].segments;
+  ASSERT_GE(segments.size(), 4u);
+  auto length = [](const std::vector<TimeSegment>& v) {
+    double sum = 0.0;
+    for (const auto& s : v) sum += s.t1 - s.t0;
+    return sum;
+  };
+  auto inside = [&](const TimeSegment& piece) {
+    for (const auto& s : segments) {
+      if (piece.t0 >= s.t0 - 1e-12 && piece.t1 <= s.t1 + 1e-12) return true;
+    }
+    return false;
+  };
+  // Stride 1: the same time, cut into pieces no longer than the chassis horizon.
+  const std::vector<Dataset> all = decimatedData(split.train, 2.0, 1);
+  ASSERT_EQ(all.size(), 1u);
+  EXPECT_NEAR(length(all[0].segments), length(segments), 1e-9);
+  std::size_t pieces = 0;
+  for (const auto& s : segments) pieces += static_cast<std::size_t>(std::ceil((s.t1 - s.t0) / 2.0 - 1e-9));
+  EXPECT_EQ(all[0].segments.size(), pieces);
+  for (const auto& piece : all[0].segments) {
+    EXPECT_LE(piece.t1 - piece.t0, 2.0 + 1e-12);
+    EXPECT_TRUE(inside(piece));
+  }
+  // Stride 3: pieces 0, 3, 6, ... of those, in order, the first one the set's start.
+  const std::vector<Dataset> coarse = decimatedData(split.train, 2.0, 3);
+  ASSERT_EQ(coarse[0].segments.size(), (pieces + 2) / 3);
+  for (std::size_t k = 0; k < coarse[0].segments.size(); ++k) {
+    EXPECT_EQ(coarse[0].segments[k].t0, all[0].segments[3 * k].t0);
+    EXPECT_EQ(coarse[0].segments[k].t1, all[0].segments[3 * k].t1);
+  }
+  EXPECT_EQ(coarse[0].segments.front().t0, segments.front().t0);
+  // Spread over the set: the last kept piece lies in its last three pieces.
+  EXPECT_GE(coarse[0].segments.back().t0, all[0].segments[pieces - 3].t0);
+  // Several sets: counted per set, so a short set keeps its first piece and the order is kept.
+  const std::vector<Dataset> two = decimatedData({split.train[0], {split.train[0].log, split.train[0].config, {{1.0, 1.5}}}}, 2.0, 3);
+  ASSERT_EQ(two.size(), 2u);
+  ASSERT_EQ(two[1].segments.size(), 1u);
+  EXPECT_EQ(two[1].segments[0].t0, 1.0);
+  EXPECT_EQ(two[1].segments[0].t1, 1.5);
+  EXPECT_THROW(decimatedData(split.train, 0.0, 3), std::invalid_argument);
+  EXPECT_THROW(decimatedData(split.train, 2.0, 0), std::invalid_argument);
 }
 
 }  // namespace
