@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <deque>
+#include <limits>
 #include <mutex>
 #include <vector>
 
@@ -179,19 +180,24 @@ class WaypointPath : public Path {
 namespace {
 
 /// Newton on g from x, kept inside [lo, hi] where g(lo) <= 0 <= g(hi) (bisection when Newton leaves it).
+/// With `verified` false g has not been evaluated at lo and hi, so they are no bracket: NaN where a
+/// verified search would bisect (or had not converged after its iterations).
 template <typename G>
-double refineRoot(const G& g, double x, double lo, double hi) {
+double refineRoot(const G& g, double x, double lo, double hi, bool verified = true) {
   for (int iteration = 0; iteration < 100; ++iteration) {
     double dg;
     const double gx = g(x, &dg);
     if (gx == 0.0) return x;
     if (gx < 0.0) lo = x; else hi = x;
     double next = dg > 0.0 ? x - gx / dg : 0.5 * (lo + hi);
-    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    if (!(dg > 0.0 && next > lo && next < hi)) {
+      if (!verified) return std::numeric_limits<double>::quiet_NaN();
+      next = 0.5 * (lo + hi);
+    }
     if (std::fabs(next - x) <= 1e-13 * (1.0 + std::fabs(x))) return next;
     x = next;
   }
-  return x;
+  return verified ? x : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace
@@ -199,35 +205,52 @@ double refineRoot(const G& g, double x, double lo, double hi) {
 double Path::project(double px, double py) const {
   // g(x) = (x - px) + (f - py) f' is the derivative of half the squared distance. Newton from
   // x = px, kept inside a bracket where g changes sign (bisection when Newton leaves it).
+  double f0, f1_0, f2_0;
+  evaluate(px, &f0, &f1_0, &f2_0);
+  auto at = [&](double x, double* f, double* f1, double* f2) {
+    if (x == px) {  // Newton's first point: evaluated already
+      *f = f0;
+      *f1 = f1_0;
+      *f2 = f2_0;
+    } else {
+      evaluate(x, f, f1, f2);
+    }
+  };
   auto g = [&](double x, double* dg) {
     double f, f1, f2;
-    evaluate(x, &f, &f1, &f2);
+    at(x, &f, &f1, &f2);
     if (dg) *dg = 1.0 + f1 * f1 + (f - py) * f2;
     return (x - px) + (f - py) * f1;
   };
   auto distance2 = [&](double x) {
     double f, f1, f2;
-    evaluate(x, &f, &f1, &f2);
+    at(x, &f, &f1, &f2);
     return (x - px) * (x - px) + (f - py) * (f - py);
   };
-  double f0, f1, f2;
-  evaluate(px, &f0, &f1, &f2);
   // The closest point lies within |py - f(px)| of px in x (the point above px is that close).
   const double reach = std::fabs(py - f0) + 1.0;
   double lo = px - reach, hi = px + reach;
-  double glo = g(lo, nullptr), ghi = g(hi, nullptr);
-  for (int widen = 0; glo > 0.0 && widen < 40; ++widen) glo = g(lo -= reach, nullptr);
-  for (int widen = 0; ghi < 0.0 && widen < 40; ++widen) ghi = g(hi += reach, nullptr);
-  double best = refineRoot(g, px, lo, hi);
+  // Near the lane Newton converges without a step leaving [lo, hi]: then it took the steps it takes
+  // inside the verified bracket, one for one (a bracket only acts on a step that leaves it), and the
+  // bracket's two evaluations are saved. Else the bracket is verified (widened until g changes sign
+  // across it) and the search runs again from px.
+  double best = refineRoot(g, px, lo, hi, false);
+  if (std::isnan(best)) {
+    double glo = g(lo, nullptr), ghi = g(hi, nullptr);
+    for (int widen = 0; glo > 0.0 && widen < 40; ++widen) glo = g(lo -= reach, nullptr);
+    for (int widen = 0; ghi < 0.0 && widen < 40; ++widen) ghi = g(hi += reach, nullptr);
+    best = refineRoot(g, px, lo, hi);
+  }
   // On a winding lane g has several roots in the bracket and Newton may settle on a farther one (a
   // local minimum of the distance, or a maximum). A closer point (x, f(x)) than Newton's, at distance d,
   // has |x - px| < d: scan that window on a grid finer than a lane's bends (0.25 m; at most 400 pieces)
   // for the sign changes of g that bracket a minimum, and keep the closest. Near the lane the window is
-  // one piece (two evaluations); the common case - Newton's root is the closest - returns it untouched.
+  // one piece, which holds Newton's root: nothing to scan - the common case returns the root untouched.
   double best_d = distance2(best);
   const double d = std::sqrt(best_d);
   const double w0 = std::max(lo, px - d), w1 = std::min(hi, px + d);
   const int pieces = std::clamp(static_cast<int>(std::ceil((w1 - w0) / 0.25)), 1, 400);
+  if (pieces == 1 && best >= w0 && best <= w1) return best;
   double a = w0, ga = g(w0, nullptr);
   for (int k = 1; k <= pieces; ++k) {
     const double b = w0 + (w1 - w0) * k / pieces;
