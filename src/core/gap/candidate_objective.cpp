@@ -54,29 +54,32 @@ bool memoizable(const std::vector<double>& theta) {
   return std::none_of(theta.begin(), theta.end(), [](double v) { return std::isnan(v); });
 }
 
+/// memo[key], computed and stored on the first call. The computation runs outside the lock: Ceres
+/// evaluates points from several threads, and two threads computing one point store the same value.
+template <typename Memo, typename Compute>
+typename Memo::mapped_type remembered(std::mutex& mutex, Memo& memo, typename Memo::key_type key,
+                                      const Compute& compute) {
+  {
+    std::lock_guard<std::mutex> lock(mutex);
+    if (const auto it = memo.find(key); it != memo.end()) return it->second;
+  }
+  const typename Memo::mapped_type value = compute();
+  std::lock_guard<std::mutex> lock(mutex);
+  memo.emplace(std::move(key), value);
+  return value;
+}
+
 }  // namespace
 
 double CandidateObjective::loss(const std::vector<double>& theta) const {
-  const bool memo = memoizable(theta);
-  if (memo) {
-    std::lock_guard<std::mutex> lock(memo_mutex_);
-    if (const auto it = losses_.find(theta); it != losses_.end()) return it->second;
-  }
-  double value;
-  if (!configFor(theta).problems().empty()) {
-    value = std::numeric_limits<double>::infinity();
-  } else if (const double d = divergence(theta); d > 0.0) {
-    value = kUnstableLoss * (1.0 + d);
-  } else {
+  auto compute = [&] {
+    if (!configFor(theta).problems().empty()) return std::numeric_limits<double>::infinity();
+    if (const double d = divergence(theta); d > 0.0) return kUnstableLoss * (1.0 + d);
     std::vector<double> r;
     replayResiduals(changeFor(theta), &r);
-    value = sumOfSquares(r);
-  }
-  if (memo) {
-    std::lock_guard<std::mutex> lock(memo_mutex_);
-    losses_.emplace(theta, value);
-  }
-  return value;
+    return sumOfSquares(r);
+  };
+  return memoizable(theta) ? remembered(memo_mutex_, losses_, theta, compute) : compute();
 }
 
 void CandidateObjective::requireStability(std::vector<BoundedLoopRequirement> requirements) {
@@ -86,18 +89,10 @@ void CandidateObjective::requireStability(std::vector<BoundedLoopRequirement> re
 }
 
 LoopDivergence CandidateObjective::bounds(const std::vector<double>& theta, const BoundedLoopRequirement& r) const {
-  if (!memoizable(theta) || !memoizable({r.horizon, r.max_steering_angle, r.max_torque})) {
-    return boundsCheck(changeFor(theta), r);
-  }
-  auto key = std::make_pair(theta, RequirementKey{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque});
-  {
-    std::lock_guard<std::mutex> lock(memo_mutex_);
-    if (const auto it = bounds_.find(key); it != bounds_.end()) return it->second;
-  }
-  const LoopDivergence d = boundsCheck(changeFor(theta), r);
-  std::lock_guard<std::mutex> lock(memo_mutex_);
-  bounds_.emplace(std::move(key), d);
-  return d;
+  auto compute = [&] { return boundsCheck(changeFor(theta), r); };
+  if (!memoizable(theta) || !memoizable({r.horizon, r.max_steering_angle, r.max_torque})) return compute();
+  return remembered(memo_mutex_, bounds_,
+                    {theta, RequirementKey{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque}}, compute);
 }
 
 void CandidateObjective::replayResiduals(const ConfigChange& change, std::vector<double>* out) const {
