@@ -656,8 +656,8 @@ def run_tasks(args, fn, specs, skipped, total):
     failed = sum(1 for r in skipped.values() if r["status"] != "ok")
     progress = Progress(total, len(skipped), interval=args.progress_interval)
     client, cluster = open_client(args)
+    futures = {}
     try:
-        futures = {}
         for spec in specs:
             key = f"lk_fleet-{spec['kind']}-{spec['task_id']}"
             futures[client.submit(fn, spec, key=key, retries=args.retries, pure=False)] = spec
@@ -677,6 +677,15 @@ def run_tasks(args, fn, specs, skipped, total):
             if not batch:
                 time.sleep(0.1)
         progress.finish(len(skipped) + len(results), failed)
+    except KeyboardInterrupt:
+        # Ctrl-C: cancel what has not finished, so that no queued task starts while the cluster shuts
+        # down (a worker went on through its queue meanwhile: on a loaded machine an interrupted run had
+        # finished every task). What is written stays; the same command resumes.
+        try:
+            client.cancel([f for f in futures if not f.done()], force=True)
+        except Exception:  # best effort: the interrupt must not become another error
+            pass
+        raise
     finally:
         client.close()
         if cluster is not None:
