@@ -4,6 +4,7 @@
 //          [--no-plots] [--quiet]
 // Writes DIR/report.json (DESIGN §5 fields), DIR/report.md and plots (residuals, spectra, overlays,
 // ranking). Exit status: 0 ok, 2 bad configuration, 4 bad input data, 1 other error.
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -26,7 +27,7 @@ namespace {
 void usage(std::ostream& out) {
   out << "usage: lk_gap --config nominal.yaml [--set key=value ...] --log run.csv|run.bag [--scenario run.yaml]\n"
          "              [--log ...] [--holdout other.csv|other.bag [--scenario other.yaml] ...] --report DIR\n"
-         "              [--effects a,b] [--threads N] [--no-plots] [--quiet]\n"
+         "              [--effects a,b] [--threads N] [--coarse-fit-stride K] [--no-plots] [--quiet]\n"
          "  --config   the nominal configuration (the same YAML lk_simulate and the nodes use): the car, its\n"
          "             controllers and delays, shared by every run\n"
          "  --log      a log of a real run (CSV with DESIGN §5 columns, or a bag of the suite's topics)\n"
@@ -39,7 +40,9 @@ void usage(std::ostream& out) {
          "  --holdout  held-out runs for scoring; without them, blocks of the logs are held out\n"
          "  --report   output directory: report.json, report.md, *.csv, *.png\n"
          "  --noise-reference-draws N   draws of the noise-only null: the detection test's tail, and the largest\n"
-         "             is the noise reference the gap is net of (default 19: a test at 5 %; 0 = raw excess, no test)\n";
+         "             is the noise reference the gap is net of (default 19: a test at 5 %; 0 = raw excess, no test)\n"
+         "  --coarse-fit-stride K   fit each candidate coarse to fine: search on every K-th 2 s piece of the\n"
+         "             training data, finish on all of it (default 1: search all the data; docs/gap.md)\n";
 }
 
 std::vector<std::string> split(const std::string& text) {
@@ -95,6 +98,9 @@ int main(int argc, char** argv) {
     else if (arg == "--effects") options.effects = split(value());
     else if (arg == "--threads") options.threads = std::atoi(value().c_str());
     else if (arg == "--noise-reference-draws") options.noise_reference_draws = std::atoi(value().c_str());
+    else if (arg == "--coarse-fit-stride") {
+      options.coarse_fit_stride = static_cast<std::size_t>(std::max(1, std::atoi(value().c_str())));
+    }
     else if (arg == "--no-plots") plots = false;
     else if (arg == "--quiet") quiet = true;
     else if (arg == "--help" || arg == "-h") {

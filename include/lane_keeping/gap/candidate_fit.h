@@ -62,11 +62,11 @@ std::pair<double, double> narrowedRange(const EffectParameter& p, double value);
 /// saturations make the residuals far from linear in the parameters.)
 std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta = {});
 
-/// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt (parameters
-/// the search left at a bound held there). Coarse to fine when `coarse_stride` > 1: the search and a
-/// first polish run on every coarse_stride-th piece of the data (decimatedData, pieces of the chassis
-/// horizon), two further steps on all of it. A profile effect (no polish: its loss is not smooth)
-/// searches all the data.
+/// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt. Coarse to
+/// fine when `coarse_stride` > 1: the search and a first polish run on every coarse_stride-th piece of
+/// the data (decimatedData, pieces of the chassis horizon), two further steps on all of it, parameters
+/// the search left at a bound held there. A profile effect (no polish: its loss is not smooth) searches
+/// all the data.
 std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride = 1);
 
 /// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta.

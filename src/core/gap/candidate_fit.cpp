@@ -34,11 +34,12 @@ struct CeresResiduals {
 };
 
 /// Levenberg-Marquardt (Ceres, central differences) from theta, at most `iterations` steps; theta
-/// itself when no step lowers the loss. A parameter at a bound of its range is held there: the
-/// coordinate search put it there as the best point of its line, so the loss falls outward, and LM's
-/// steps projected back onto the box were rejected one after the other (a fit on a log without the
-/// effect spent five iterations, ~45 % of its time, without moving).
-std::vector<double> polish(const CandidateObjective& objective, std::vector<double> theta, int iterations) {
+/// itself when no step lowers the loss. With `hold_at_bound` a parameter at a bound of its range is held
+/// there: the coordinate search put it there as the best point of its line, so the loss falls outward,
+/// and LM's steps projected back onto the box were rejected one after the other (a fit on a log without
+/// the effect spent five iterations, ~45 % of its time, without moving).
+std::vector<double> polish(const CandidateObjective& objective, std::vector<double> theta, int iterations,
+                           bool hold_at_bound) {
   const CandidateEffect& effect = objective.effect();
   const std::vector<double> x = objective.toFitSpace(theta);
   std::vector<std::size_t> free;
@@ -46,7 +47,7 @@ std::vector<double> polish(const CandidateObjective& objective, std::vector<doub
   for (std::size_t i = 0; i < x.size(); ++i) {
     const auto& p = effect.params[i];
     const double lo = p.log_scale ? std::log(p.lower) : p.lower, hi = p.log_scale ? std::log(p.upper) : p.upper;
-    if (std::min(x[i] - lo, hi - x[i]) <= 1e-9 * (hi - lo)) continue;
+    if (hold_at_bound && std::min(x[i] - lo, hi - x[i]) <= 1e-9 * (hi - lo)) continue;
     free.push_back(i);
     lower.push_back(lo);
     upper.push_back(hi);
@@ -145,14 +146,14 @@ std::vector<double> coordinateFit(const CandidateObjective& objective, std::vect
 
 std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride) {
   if (objective.effect().profile) return coordinateFit(objective);
-  if (coarse_stride <= 1) return polish(objective, coordinateFit(objective), 4);
+  if (coarse_stride <= 1) return polish(objective, coordinateFit(objective), 4, false);
   // Coarse to fine: the search (~20 evaluations per parameter and round) and the polish run on a
   // coarse_stride-th of the data and find the optimum's neighbourhood; two steps on all of it move
   // to the optimum of all the data.
   const std::vector<Dataset> coarse =
       decimatedData(objective.data(), objective.replayOptions().chassis_horizon, coarse_stride);
   const CandidateObjective coarse_objective = objective.on(coarse);
-  return polish(objective, polish(coarse_objective, coordinateFit(coarse_objective), 4), 2);
+  return polish(objective, polish(coarse_objective, coordinateFit(coarse_objective), 4, true), 2, true);
 }
 
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,

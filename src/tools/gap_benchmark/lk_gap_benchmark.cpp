@@ -1,8 +1,9 @@
 // lk_gap_benchmark: the withheld-effect benchmark of the gap diagnosis.
-//   lk_gap_benchmark run      --out DIR [--family F] [--cases SUBSTRING] [--threads N]   generate + diagnose + score
+//   lk_gap_benchmark run      --out DIR [--family F] [--cases SUBSTRING] [--threads N] [--coarse-fit-stride K]
+//                              generate + diagnose + score (K: DiagnosisOptions::coarse_fit_stride)
 //   lk_gap_benchmark generate --out DIR [--family F] [--cases SUBSTRING] [--log-rate HZ]
 //     F: candidates (default: the family written beside the candidates) or independent (docs/gap.md)
-//   lk_gap_benchmark diagnose --dir DIR [--cases SUBSTRING] [--threads N]
+//   lk_gap_benchmark diagnose --dir DIR [--cases SUBSTRING] [--threads N] [--coarse-fit-stride K]
 //   lk_gap_benchmark ceiling  --dir DIR [--cases SUBSTRING] [--threads N]
 //   lk_gap_benchmark score    --dir DIR
 // `generate` writes DIR/logs/<case>.csv, DIR/nominal/<manoeuvre>.yaml, DIR/cases.json (case id,
@@ -146,7 +147,7 @@ std::pair<std::vector<GapRun>, std::vector<GapRun>> caseRuns(const std::string& 
   return {std::move(training), std::move(heldout)};
 }
 
-void diagnose(const std::string& dir, const std::string& filter, int threads) {
+void diagnose(const std::string& dir, const std::string& filter, int threads, std::size_t coarse_fit_stride) {
   makeDir(dir + "/reports");
   const json cases = readJson(dir + "/cases.json");  // no truth in here
   for (const auto& c : cases) {
@@ -157,6 +158,7 @@ void diagnose(const std::string& dir, const std::string& filter, int threads) {
     const auto [training, heldout] = caseRuns(dir, c);
     DiagnosisOptions options;
     options.threads = threads;
+    options.coarse_fit_stride = coarse_fit_stride;
     const GapReport report = diagnoseGap(nominal, training, heldout, options);
     makeDir(dir + "/reports/" + id);
     writeGapReportJson(dir + "/reports/" + id + "/report.json", report);
@@ -294,12 +296,13 @@ int score(const std::string& dir) {
 
 int main(int argc, char** argv) {
   if (argc < 2) {
-    std::cerr << "usage: lk_gap_benchmark run|generate|diagnose|ceiling|score --out/--dir DIR [--family candidates|independent] [--cases SUBSTRING] [--threads N]\n";
+    std::cerr << "usage: lk_gap_benchmark run|generate|diagnose|ceiling|score --out/--dir DIR [--family candidates|independent] [--cases SUBSTRING] [--threads N] [--coarse-fit-stride K]\n";
     return 2;
   }
   const std::string command = argv[1];
   std::string dir, filter, family = "candidates";
   int threads = 2;
+  std::size_t coarse_fit_stride = DiagnosisOptions{}.coarse_fit_stride;
   double log_rate = 500.0;
   for (int i = 2; i + 1 < argc; i += 2) {
     const std::string arg = argv[i];
@@ -308,6 +311,8 @@ int main(int argc, char** argv) {
     else if (arg == "--family") family = argv[i + 1];
     else if (arg == "--threads") threads = std::atoi(argv[i + 1]);
     else if (arg == "--log-rate") log_rate = std::atof(argv[i + 1]);
+    else if (arg == "--coarse-fit-stride") coarse_fit_stride =
+        static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
     else {
       std::cerr << "lk_gap_benchmark: unknown argument '" << arg << "'\n";
       return 2;
@@ -319,7 +324,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (command == "generate" || command == "run") generate(dir, family, filter, log_rate);
-    if (command == "diagnose" || command == "run") diagnose(dir, filter, threads);
+    if (command == "diagnose" || command == "run") diagnose(dir, filter, threads, coarse_fit_stride);
     if (command == "ceiling" || command == "run") ceiling(dir, filter, threads);
     if (command == "score" || command == "run") return score(dir);
     if (command != "generate" && command != "diagnose" && command != "ceiling") {
