@@ -3,39 +3,21 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <stdexcept>
 
-#include "gap_benchmark/benchmark_cases.h"
+#include "benchmark_objective_fixture.h"
 #include "lane_keeping/gap/candidate_fit.h"
-#include "lane_keeping/gap/diagnosis_data.h"
 
 namespace lane_keeping {
 namespace diagnosis {
 namespace {
 
-const CandidateEffect& effectNamed(const std::string& name) {
-  for (const auto& e : candidateEffects()) {
-    if (e.name == name) return e;
-  }
-  throw std::runtime_error("no candidate " + name);
-}
-
 TEST(LeastSquaresFit, CoarseToFineReachesTheOptimumOfAllTheData) {
   // A 20 s lane change with LuGre friction in the column (the benchmark's case), at 100 Hz; the
   // candidate's Coulomb + viscous friction fits it without a true value, so the reference is the fit
   // whose search saw all the data.
-  BenchmarkCase c = benchmarkCase("steering_friction-large-lane_change");
-  c.truth_overlay.push_back("simulation.duration=20");
-  GapRun run;
-  run.log = generateBenchmarkLog(c, SensorNoise{}, 100.0);
-  run.config = benchmarkNominal(c.manoeuvre);
-  run.config.simulation.duration = 20.0;
-  const std::vector<RunData> runs = prepareRuns({run});
-  const std::vector<Dataset> data = wholeLogs(runs, 0.6);
-  const std::set<std::string> available = availableSubsystems(runs);
-  const Evaluation nominal = evaluate(nullptr, data, available, ReplayOptions{});
-  const CandidateEffect& friction = effectNamed("steering_friction");
-  CandidateObjective objective(friction, run.config, data, ReplayOptions{}, nominal.sigma1, available);
+  const BenchmarkObjectiveFixture f("steering_friction-large-lane_change", 20.0, 100.0, 0.6);
+  const CandidateEffect& friction = candidateNamed("steering_friction");
+  CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
 
   const std::vector<double> full = leastSquaresFit(objective, 1);
   const std::vector<double> coarse = leastSquaresFit(objective, 3);

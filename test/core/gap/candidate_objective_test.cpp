@@ -7,34 +7,15 @@
 #include <cmath>
 #include <limits>
 
-#include "gap_benchmark/benchmark_cases.h"
+#include "benchmark_objective_fixture.h"
 #include "lane_keeping/gap/candidate_objective.h"
-#include "lane_keeping/gap/diagnosis_data.h"
 
 namespace lane_keeping {
 namespace diagnosis {
 namespace {
 
-struct Fixture {
-  std::vector<RunData> runs;
-  std::vector<Dataset> data;
-  Evaluation nominal;
-  std::set<std::string> available;
-  SimConfig config;
-
-  Fixture() {
-    BenchmarkCase c = benchmarkCase("steering_compliance-small-sinusoid");
-    c.truth_overlay.push_back("simulation.duration=6");
-    GapRun run;
-    run.log = generateBenchmarkLog(c, SensorNoise{}, 200.0);
-    run.config = benchmarkNominal(c.manoeuvre);
-    run.config.simulation.duration = 6.0;
-    config = run.config;
-    runs = prepareRuns({run});
-    data = wholeLogs(runs, 0.5);
-    available = availableSubsystems(runs);
-    nominal = evaluate(nullptr, data, available, ReplayOptions{});
-  }
+struct Fixture : BenchmarkObjectiveFixture {
+  Fixture() : BenchmarkObjectiveFixture("steering_compliance-small-sinusoid", 6.0, 200.0, 0.5) {}
 
   BoundedLoopRequirement requirement() const {
     const LogSignals& log = *runs.front().log;
@@ -45,16 +26,9 @@ struct Fixture {
   }
 };
 
-const CandidateEffect& wheelSensorColumn() {
-  for (const auto& e : candidateEffects()) {
-    if (e.name == "steering_compliance" && e.form == "wheel_sensor") return e;
-  }
-  throw std::runtime_error("no wheel_sensor column");
-}
-
 TEST(CandidateObjective, ARememberedLossIsTheLossAndARequirementIsPartOfIt) {
   const Fixture f;
-  const CandidateEffect& column = wheelSensorColumn();
+  const CandidateEffect& column = candidateNamed("steering_compliance", "wheel_sensor");
   CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
   // Stiffness, damping, inertia: a softer column than the truth's, and one whose closed loop rings up
   // within half a second (k = 1.6e5 N m/rad against the actuator's 10 kHz PD loop).

@@ -1,0 +1,49 @@
+#pragma once
+// The inputs of a candidate's objective on one benchmark log, for tests of the fit machinery: the case
+// shortened to `duration`, its truth log at `log_rate`, the nominal configuration, the whole log (after
+// `margin`) as the data, and the nominal replays' sigma1 the objective reuses.
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "gap_benchmark/benchmark_cases.h"
+#include "lane_keeping/gap/candidate_effects.h"
+#include "lane_keeping/gap/diagnosis_data.h"
+#include "lane_keeping/gap/evaluation.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+
+struct BenchmarkObjectiveFixture {
+  std::vector<RunData> runs;
+  std::vector<Dataset> data;
+  Evaluation nominal;
+  std::set<std::string> available;
+  SimConfig config;
+
+  BenchmarkObjectiveFixture(const std::string& case_id, double duration, double log_rate, double margin) {
+    BenchmarkCase c = benchmarkCase(case_id);
+    c.truth_overlay.push_back("simulation.duration=" + std::to_string(duration));
+    GapRun run;
+    run.log = generateBenchmarkLog(c, SensorNoise{}, log_rate);
+    run.config = benchmarkNominal(c.manoeuvre);
+    run.config.simulation.duration = duration;
+    config = run.config;
+    runs = prepareRuns({run});
+    data = wholeLogs(runs, margin);
+    available = availableSubsystems(runs);
+    nominal = evaluate(nullptr, data, available, ReplayOptions{});
+  }
+};
+
+/// The candidate `name` in its form `form` (empty: its first form).
+inline const CandidateEffect& candidateNamed(const std::string& name, const std::string& form = "") {
+  for (const auto& e : candidateEffects()) {
+    if (e.name == name && (form.empty() || e.form == form)) return e;
+  }
+  throw std::runtime_error("no candidate " + name + (form.empty() ? "" : " (" + form + ")"));
+}
+
+}  // namespace diagnosis
+}  // namespace lane_keeping
