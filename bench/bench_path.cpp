@@ -22,11 +22,12 @@ PathParams lane(int points) {
   PathParams p;
   if (points == 0) return p;  // straight
   p.type = "waypoints";
-  p.waypoints.clear();
+  std::vector<Point2> waypoints;
   for (int i = 0; i < points; ++i) {
     const double x = -50.0 + 600.0 * i / (points - 1);
-    p.waypoints.push_back({x, 1.5 * std::sin(2.0 * M_PI * x / 300.0)});
+    waypoints.push_back({x, 1.5 * std::sin(2.0 * M_PI * x / 300.0)});
   }
+  p.waypoints = std::move(waypoints);
   return p;
 }
 

@@ -37,26 +37,27 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   PathParams params;
   params.type = "waypoints";
-  params.waypoints.clear();
+  std::vector<Point2> points;
   if (data[0] % 2 == 0) {
-    for (size_t at = 1; at + 16 <= size && params.waypoints.size() < 256; at += 16) {
+    for (size_t at = 1; at + 16 <= size && points.size() < 256; at += 16) {
       Point2 p;
       std::memcpy(&p[0], data + at, 8);
       std::memcpy(&p[1], data + at + 8, 8);
-      params.waypoints.push_back(p);
+      points.push_back(p);
     }
   } else {
     const std::string file =
         fuzz::writeFile("lane.csv", std::string(reinterpret_cast<const char*>(data) + 1, size - 1));
     std::string error;
-    if (!readPointsCsv(file, &params.waypoints, &error)) {
+    if (!readPointsCsv(file, &points, &error)) {
       if (error.find(file) == std::string::npos) fuzz::finding("readPointsCsv error without the file: " + error);
       return 0;
     }
-    for (const Point2& p : params.waypoints) {
+    for (const Point2& p : points) {
       if (!std::isfinite(p[0]) || !std::isfinite(p[1])) fuzz::finding("readPointsCsv returned a non-finite point");
     }
   }
+  params.waypoints = std::move(points);
   std::shared_ptr<const Path> path;
   fuzz::expectResultOrSuiteError([&] { path = createPath(params); }, "path.waypoints");
   if (!path) return 0;

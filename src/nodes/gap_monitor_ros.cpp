@@ -37,7 +37,7 @@ class NodeParamVisitor : public ParamVisitor {
   void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed, const char*) override {
     value = allowed.empty() ? reader_.text(key, value) : reader_.choice(key, value, allowed);
   }
-  void points(const std::string&, std::vector<Point2>&, const char*, const char*) override {}
+  void points(const std::string&, PointList&, const char*, const char*) override {}
 
  private:
   NodeParamReader& reader_;

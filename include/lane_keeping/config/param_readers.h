@@ -24,7 +24,7 @@ class FlatParamReader : public ParamVisitor {
   void flag(const std::string& key, bool& value, const char* doc) override;
   void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed,
               const char* doc) override;
-  void points(const std::string& key, std::vector<Point2>& value, const char* unit, const char* doc) override;
+  void points(const std::string& key, PointList& value, const char* unit, const char* doc) override;
 
   /// Keys present in the source that no visit asked for (typos), as problems.
   std::vector<ConfigProblem> unknownKeyProblems() const;
@@ -51,7 +51,7 @@ class RangeChecker : public ParamVisitor {
   void flag(const std::string&, bool&, const char*) override {}
   void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed,
               const char* doc) override;
-  void points(const std::string& key, std::vector<Point2>& value, const char* unit, const char* doc) override;
+  void points(const std::string& key, PointList& value, const char* unit, const char* doc) override;
 
   std::vector<ConfigProblem>& problems() { return problems_; }
 
@@ -71,7 +71,7 @@ class ParamPrinter : public ParamVisitor {
   void flag(const std::string& key, bool& value, const char* doc) override;
   void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed,
               const char* doc) override;
-  void points(const std::string& key, std::vector<Point2>& value, const char* unit, const char* doc) override;
+  void points(const std::string& key, PointList& value, const char* unit, const char* doc) override;
 
  private:
   void line(const std::string& key, const std::string& value, const char* unit, const char* doc);
@@ -94,7 +94,7 @@ class ParamCatalog : public ParamVisitor {
   void flag(const std::string& key, bool& value, const char* doc) override;
   void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed,
               const char* doc) override;
-  void points(const std::string& key, std::vector<Point2>& value, const char* unit, const char* doc) override;
+  void points(const std::string& key, PointList& value, const char* unit, const char* doc) override;
   const std::vector<Row>& rows() const { return rows_; }
 
  private:

@@ -9,6 +9,8 @@
 #include <string>
 #include <vector>
 
+#include "lane_keeping/config/point_list.h"
+
 namespace lane_keeping {
 
 /// Allowed interval of a number; NaN and infinities are never allowed.
@@ -30,7 +32,6 @@ struct Range {
   std::string describe() const;
 };
 
-using Point2 = std::array<double, 2>;
 
 /// Visitor over parameter fields. `key` is always the full dotted key ("tire.front.mu").
 class ParamVisitor {
@@ -45,7 +46,7 @@ class ParamVisitor {
   virtual void flag(const std::string& key, bool& value, const char* doc) = 0;
   virtual void choice(const std::string& key, std::string& value, const std::vector<std::string>& allowed,
                       const char* doc) = 0;
-  virtual void points(const std::string& key, std::vector<Point2>& value, const char* unit, const char* doc) = 0;
+  virtual void points(const std::string& key, PointList& value, const char* unit, const char* doc) = 0;
 };
 
 }  // namespace lane_keeping

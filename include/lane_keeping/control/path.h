@@ -32,6 +32,10 @@ class Path {
   /// Closest point on the path to (px, py): its x. Safeguarded Newton on
   /// (x - px) + (f(x) - py) f'(x) = 0.
   double project(double px, double py) const;
+
+ private:
+  /// project(), with f, f', f'' at the returned x (errors() needs them: not evaluated twice).
+  double foot(double px, double py, double* f, double* f1, double* f2) const;
 };
 
 /// Builds the path of the configuration (type = straight | lane_change | sinusoid | waypoints).

@@ -22,7 +22,7 @@ struct PathParams {
   double sinusoid_wavelength = 150.0; ///< [m]
   double sinusoid_start = 30.0;       ///< [m]
   // waypoints: natural cubic spline through the points (x strictly increasing), straight beyond.
-  std::vector<Point2> waypoints{{0.0, 0.0}, {50.0, 0.0}, {100.0, 2.0}, {150.0, 2.0}};
+  PointList waypoints{{0.0, 0.0}, {50.0, 0.0}, {100.0, 2.0}, {150.0, 2.0}};
 
   void visit(ParamVisitor& v, const std::string& prefix) {
     v.choice(prefix + "type", type, {"straight", "lane_change", "sinusoid", "waypoints"},

@@ -43,7 +43,7 @@ class NumberAccess : public ParamVisitor {
   void choice(const std::string& key, std::string&, const std::vector<std::string>&, const char*) override {
     notNumeric(key);
   }
-  void points(const std::string& key, std::vector<Point2>&, const char*, const char*) override { notNumeric(key); }
+  void points(const std::string& key, PointList&, const char*, const char*) override { notNumeric(key); }
 
   bool found() const { return found_; }
   double value() const { return value_; }

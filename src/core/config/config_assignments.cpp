@@ -45,7 +45,7 @@ class ValueFinder : public ParamVisitor {
   void choice(const std::string& key, std::string& value, const std::vector<std::string>&, const char*) override {
     if (key == key_) found(value);
   }
-  void points(const std::string& key, std::vector<Point2>& value, const char*, const char*) override {
+  void points(const std::string& key, PointList& value, const char*, const char*) override {
     if (key != key_) return;
     std::ostringstream out;
     out << "[";

@@ -148,7 +148,7 @@ void FlatParamReader::choice(const std::string& key, std::string& value, const s
   (void)allowed;
 }
 
-void FlatParamReader::points(const std::string& key, std::vector<Point2>& value, const char*, const char*) {
+void FlatParamReader::points(const std::string& key, PointList& value, const char*, const char*) {
   const FlatParams::Entry* entry = source_.find(key);
   if (entry == nullptr) {
     absent_.push_back(key);
@@ -163,7 +163,7 @@ void FlatParamReader::points(const std::string& key, std::vector<Point2>& value,
       fail(key, "= " + entry->value.Scalar() + ": " + error);
       return;
     }
-    value = std::move(parsed);
+    value = PointList(std::move(parsed));
     return;
   }
   if (!entry->value.IsSequence()) {
@@ -181,7 +181,7 @@ void FlatParamReader::points(const std::string& key, std::vector<Point2>& value,
     }
     parsed.push_back(point);
   }
-  value = parsed;
+  value = PointList(std::move(parsed));
 }
 
 std::vector<ConfigProblem> FlatParamReader::unknownKeyProblems() const {
@@ -227,7 +227,7 @@ void RangeChecker::choice(const std::string& key, std::string& value, const std:
   problems_.push_back(ConfigProblem{key, "", "= '" + value + "' is unknown; allowed: " + list});
 }
 
-void RangeChecker::points(const std::string& key, std::vector<Point2>& value, const char*, const char*) {
+void RangeChecker::points(const std::string& key, PointList& value, const char*, const char*) {
   for (std::size_t i = 0; i < value.size(); ++i) {
     if (!std::isfinite(value[i][0]) || !std::isfinite(value[i][1])) {
       problems_.push_back(ConfigProblem{key, "", "[" + std::to_string(i) + "] is not finite"});
@@ -284,7 +284,7 @@ void ParamPrinter::choice(const std::string& key, std::string& value, const std:
   for (char c : value) quoted += (c == '"' || c == '\\') ? std::string("\\") + c : std::string(1, c);
   line(key, quoted + "\"", nullptr, doc);
 }
-void ParamPrinter::points(const std::string& key, std::vector<Point2>& value, const char* unit, const char* doc) {
+void ParamPrinter::points(const std::string& key, PointList& value, const char* unit, const char* doc) {
   std::ostringstream text;
   text << "[";
   for (std::size_t i = 0; i < value.size(); ++i) {
@@ -318,7 +318,7 @@ void ParamCatalog::choice(const std::string& key, std::string& value, const std:
   for (const auto& name : allowed) list += (list.empty() ? "" : " | ") + name;
   rows_.push_back(Row{key, "string", "", list, value, doc ? doc : ""});
 }
-void ParamCatalog::points(const std::string& key, std::vector<Point2>& value, const char* unit, const char* doc) {
+void ParamCatalog::points(const std::string& key, PointList& value, const char* unit, const char* doc) {
   rows_.push_back(Row{key, "[[x, y], ...]", unit ? unit : "", "finite", std::to_string(value.size()) + " points",
                       doc ? doc : ""});
 }

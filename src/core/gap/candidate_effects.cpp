@@ -173,7 +173,7 @@ class ValueCollector : public ParamVisitor {
   void integer(const std::string& k, int& v, const Range&, const char*) override { values[k] = std::to_string(v); }
   void flag(const std::string& k, bool& v, const char*) override { values[k] = v ? "true" : "false"; }
   void choice(const std::string& k, std::string& v, const std::vector<std::string>&, const char*) override { values[k] = v; }
-  void points(const std::string& k, std::vector<Point2>& v, const char*, const char*) override {
+  void points(const std::string& k, PointList& v, const char*, const char*) override {
     std::ostringstream out;
     for (const auto& p : v) out << "[" << formatNumber(p[0]) << "," << formatNumber(p[1]) << "]";
     values[k] = out.str();

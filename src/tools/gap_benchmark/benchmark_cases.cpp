@@ -5,6 +5,8 @@
 #include <sstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
@@ -34,12 +36,13 @@ SimConfig benchmarkNominal(const std::string& manoeuvre) {
   if (manoeuvre == "lane_change") {
     // Three lane changes of 3.5 m (quintic profile sampled every 5 m, spline-interpolated).
     c.path.type = "waypoints";
-    c.path.waypoints.clear();
     auto profile = [](double x) {
       auto step = [](double u) { u = std::clamp(u, 0.0, 1.0); return u * u * u * (10 - 15 * u + 6 * u * u); };
       return 3.5 * (step((x - 30) / 45) - step((x - 160) / 45) + step((x - 290) / 45));
     };
-    for (double x = -20; x <= 520; x += 5) c.path.waypoints.push_back({x, profile(x)});
+    std::vector<Point2> points;
+    for (double x = -20; x <= 520; x += 5) points.push_back({x, profile(x)});
+    c.path.waypoints = std::move(points);
   } else if (manoeuvre == "sinusoid") {
     c.path.type = "sinusoid";
     c.path.sinusoid_amplitude = 1.5;
@@ -51,14 +54,15 @@ SimConfig benchmarkNominal(const std::string& manoeuvre) {
     // A raised-cosine lane shift of 2.5 m over 80 m, then a bend of radius 800 m to the left: shapes
     // the candidates' benchmark does not use.
     c.path.type = "waypoints";
-    c.path.waypoints.clear();
     auto profile = [](double x) {
       const double u = std::clamp((x - 40.0) / 80.0, 0.0, 1.0);
       const double shift = 2.5 * 0.5 * (1.0 - std::cos(M_PI * u));
       const double d = std::max(0.0, x - 200.0);
       return shift + d * d / (2.0 * 800.0);
     };
-    for (double x = -20; x <= 700; x += 5) c.path.waypoints.push_back({x, profile(x)});
+    std::vector<Point2> points;
+    for (double x = -20; x <= 700; x += 5) points.push_back({x, profile(x)});
+    c.path.waypoints = std::move(points);
   } else {
     throw ConfigError("benchmark manoeuvre '" + manoeuvre + "' is unknown; allowed: lane_change, sinusoid, straight, bend");
   }
