@@ -41,6 +41,8 @@ class FlatParams {
   void flatten(const YAML::Node& node, const std::string& prefix, const std::string& origin);
   /// Sets a leaf, replacing any earlier subtree at `key`.
   void setLeaf(const std::string& key, Entry entry);
+  /// Stores the entry at key, replacing any there (erase and insert: see flat_params.cpp).
+  void replaceLeaf(const std::string& key, Entry entry);
   std::map<std::string, Entry> entries_;
 };
 
