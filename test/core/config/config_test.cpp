@@ -205,6 +205,19 @@ TEST(ConfigFiles, WaypointsFromACsvFileBesideTheYaml) {
   EXPECT_EQ(c.path.waypoints[2][1], 2.0);
 }
 
+TEST(ConfigFiles, AnAliasedValueKeepsItsValueWhenTheOtherKeyIsOverridden) {
+  // k_psi is an alias of k_y's node ("*g"). The entries hold the document's nodes without a clone, and
+  // yaml-cpp's Node assignment rebinds a node in place: replacing k_y by assignment would change k_psi
+  // with it. Replacing by erase and insert (flat_params.cpp) leaves it.
+  const std::string file = writeTemp("aliased.yaml", "tracker:\n  k_y: &g 0.125\n  k_psi: *g\n");
+  const SimConfig c = loadSimConfig({file}, {"tracker.k_y=0.25"});
+  EXPECT_EQ(c.tracker.k_y, 0.25);
+  EXPECT_EQ(c.tracker.k_psi, 0.125);
+  const SimConfig twice = loadSimConfig({file, writeTemp("override.yaml", "tracker:\n  k_psi: 0.5\n")});
+  EXPECT_EQ(twice.tracker.k_y, 0.125);
+  EXPECT_EQ(twice.tracker.k_psi, 0.5);
+}
+
 TEST(ConfigErrors, ABadLineOfAWaypointsFileNamesTheFileAndLine) {
   writeTemp("bad_points.csv", "x,y\n0,0\n50,oops\n");
   const std::string file = writeTemp("lane_bad.yaml", "path:\n  type: waypoints\n  waypoints: bad_points.csv\n");
