@@ -3,9 +3,10 @@
 and on waypoint lanes of 10, 1,000 and 100,000 points (the same gentle S, sampled ever more densely: maps
 give thousands of points per kilometre), inline in the YAML and, for 100,000, in a CSV file beside it; and the
 cost of 100 s of driving alone (a 120 s run minus a 20 s run: the lane queries without the start-up). Side by side
-in one run, median of 3 (README "Benchmarks").
+in one run, median of 7 (README "Benchmarks"). Given several builds' lk_simulate (before and after a change),
+runs them alternately and prints a table for each.
 
-    /usr/bin/python3 bench/lane_length.py [build/ws/devel/lib/lane_keeping/lk_simulate]
+    /usr/bin/python3 bench/lane_length.py [LK_SIMULATE ...]   (default: build/ws/devel/lib/lane_keeping/lk_simulate)
 """
 import math
 import os
@@ -16,7 +17,7 @@ import tempfile
 import time
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-BIN = sys.argv[1] if len(sys.argv) > 1 else os.path.join(REPO, "build/ws/devel/lib/lane_keeping/lk_simulate")
+BINS = sys.argv[1:] or [os.path.join(REPO, "build/ws/devel/lib/lane_keeping/lk_simulate")]
 
 
 def lane_points(points):
@@ -36,9 +37,9 @@ def lane_yaml(points, csv=None):
     return "path:\n  type: waypoints\n  waypoints: [%s]\n" % pts
 
 
-def run(config, duration):
+def run(binary, config, duration):
     start = time.perf_counter()
-    subprocess.run([BIN, "--config", config, "--set", "simulation.duration=%g" % duration, "--quiet"], check=True,
+    subprocess.run([binary, "--config", config, "--set", "simulation.duration=%g" % duration, "--quiet"], check=True,
                    stdout=subprocess.DEVNULL)
     return time.perf_counter() - start
 
@@ -54,19 +55,23 @@ def main():
             configs[name] = path
         # 20 s runs (the issue's figure, start-up included: reading the lane, building the spline) and 120 s
         # runs: their difference is the cost of 100 s of driving alone, i.e. of the lane queries.
-        times = {(n, d): [] for n in configs for d in (20, 120)}
-        for _ in range(3):  # interleaved: the machine's speed drifts
+        times = {(b, n, d): [] for b in BINS for n in configs for d in (20, 120)}
+        for _ in range(7):  # interleaved: the machine's speed drifts
             for n, path in configs.items():
                 for d in (20, 120):
-                    times[(n, d)].append(run(path, d))
+                    for b in BINS:
+                        times[(b, n, d)].append(run(b, path, d))
         med = {k: statistics.median(v) for k, v in times.items()}
-        base20 = med[("straight", 20)]
-        base_drive = med[("straight", 120)] - base20
-        print("%-30s %12s %8s %16s %8s" % ("lane", "20 s run [s]", "ratio", "100 s driving [s]", "ratio"))
-        for name in configs:
-            drive = med[(name, 120)] - med[(name, 20)]
-            print("%-30s %12.3f %8.2f %16.3f %8.2f" % (name, med[(name, 20)], med[(name, 20)] / base20, drive,
-                                                          drive / base_drive))
+        for b in BINS:
+            if len(BINS) > 1:
+                print("\n" + b)
+            base20 = med[(b, "straight", 20)]
+            base_drive = med[(b, "straight", 120)] - base20
+            print("%-30s %12s %8s %16s %8s" % ("lane", "20 s run [s]", "ratio", "100 s driving [s]", "ratio"))
+            for name in configs:
+                drive = med[(b, name, 120)] - med[(b, name, 20)]
+                print("%-30s %12.3f %8.2f %16.3f %8.2f" % (name, med[(b, name, 20)], med[(b, name, 20)] / base20,
+                                                              drive, drive / base_drive))
 
 
 if __name__ == "__main__":
