@@ -156,7 +156,9 @@ TEST(ModelExtensions, TireRelaxationLagsTheForce) {
   ContactKinematics<double> k;
   k.tan_slip_angle = 0.01;
   k.wheel_speed = 15.0;
-  double state[2] = {0.0, 0.0}, dot[2];
+  // Room for the largest tire state (the lumped LuGre's 3): Tire::evaluate dispatches over every model, and
+  // GCC's -Warray-bounds saw the LuGre branch (unreachable for a brush tire) index a 2-element array.
+  double state[3] = {0.0, 0.0, 0.0}, dot[3];
   const double target = tire.steadyState(k).lateral_force;
   for (int i = 0; i < 3333; ++i) {  // 33.33 ms with explicit Euler at 10 us
     tire.evaluate(k, state, dot);
