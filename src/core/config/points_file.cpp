@@ -61,8 +61,11 @@ bool readPointsCsv(const std::string& path, std::vector<Point2>* points, std::st
     }
     in.clear();
     in.seekg(0, std::ios::beg);
-    points->reserve(lines);
-    populatePages(points->data(), lines * sizeof(Point2));
+    // At most 2^22 points (64 MB) reserved and mapped ahead: a hostile file of gigabytes of blank lines would
+    // otherwise map gigabytes before a line is parsed. A longer lane grows as a vector does.
+    const std::size_t room = std::min<std::size_t>(lines, std::size_t{1} << 22);
+    points->reserve(room);
+    populatePages(points->data(), room * sizeof(Point2));
   }
   in.clear();
   // One line: a point, a blank line, a comment or (before the first point) a header; false with the
