@@ -34,7 +34,11 @@ def fleet(out, logs_glob, *extra, lk_bin=BIN, wait=True):
     cmd = FLEET + ["gap", "--config", os.path.join(REPO, "config", "default.yaml"), "--logs", logs_glob,
                    "--out", out, "--lk-bin", lk_bin, "--lk-gap-args", GAP_ARGS] + list(extra)
     if not wait:
-        return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True)
+        # Started as a user's foreground command is, with SIGINT at its default: a test runner started in
+        # the background by a shell without job control (`cmd &`) ignores SIGINT, its children inherit
+        # that, and a Ctrl-C sent to the fleet was then lost (the run finished every task, three times).
+        return subprocess.Popen(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
+                                preexec_fn=lambda: signal.signal(signal.SIGINT, signal.SIG_DFL))
     return subprocess.run(cmd, stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True, timeout=600)
 
 
