@@ -117,7 +117,9 @@ TEST(GapRun, ADelayIsFoundOnRunsOfDifferentRoadsAndItsHeldOutRunReplaysUnderItsO
   ASSERT_EQ(r.verdict.effect, "sensing_delay") << r.verdict.reason;
   EXPECT_GT(r.verdict.shrink, 0.8);
   for (const auto& e : r.ranking) {
-    if (e.effect == "sensing_delay") EXPECT_NEAR(e.params.at("extra_delay"), 0.0831, 0.005);
+    if (e.effect == "sensing_delay") {
+      EXPECT_NEAR(e.params.at("extra_delay"), 0.0831, 0.005);
+    }
   }
   // The held-out run replayed in closed loop under its own road and initial state: the nominal misses
   // it only by what the delay does; under the training run's road it would be metres off.
