@@ -39,8 +39,13 @@ void addSensorNoise(GapLog& log, const SensorNoise& noise, unsigned seed);
 SensorNoise estimatedNoise(const LogSignals& log);
 
 /// The nominal closed loop over the span of `log` (times shifted to the log's start), sampled at its
-/// median rate, with `log`'s optional columns only and noise at estimatedNoise(log).
+/// median rate, with `log`'s optional columns only, without noise: the noise is added to the record,
+/// not fed back (the controller of the simulated loop sees the noise-free state), so this is the same
+/// for every draw and a null of B draws simulates it once (noise_null.h).
 /// Throws LaneKeepingError if the nominal run diverges before the log's end.
+GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log);
+
+/// nominalReferenceLog with noise at estimatedNoise(log), reproducible from `seed`.
 GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsigned seed);
 
 }  // namespace lane_keeping

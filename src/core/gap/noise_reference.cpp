@@ -41,7 +41,7 @@ SensorNoise estimatedNoise(const LogSignals& log) {
   return n;
 }
 
-GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsigned seed) {
+GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log) {
   SimConfig c = nominal;
   const double step = log.log().medianStep();
   c.simulation.log_rate = 1.0 / step;
@@ -65,6 +65,11 @@ GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsign
     if (!present) column->clear();
   }
   out.unscaled = real.unscaled;
+  return out;
+}
+
+GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsigned seed) {
+  GapLog out = nominalReferenceLog(nominal, log);
   addSensorNoise(out, estimatedNoise(log), seed);
   return out;
 }

@@ -2,10 +2,13 @@
 // its nominal 5 % on no-effect logs, and the power to see a small hidden effect.
 #include <gtest/gtest.h>
 
+#include <memory>
+
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/evaluation.h"
 #include "lane_keeping/gap/gap_run.h"
 #include "lane_keeping/gap/noise_null.h"
+#include "lane_keeping/gap/noise_reference.h"
 
 namespace lane_keeping {
 namespace diagnosis {
@@ -43,6 +46,34 @@ BenchmarkCase caseWith(const std::string& manoeuvre, const std::vector<std::stri
   c.manoeuvre = manoeuvre;
   c.truth_overlay = truth;
   return c;
+}
+
+TEST(NoiseNull, EachDrawIsTheNominalLoopWithItsOwnNoise) {
+  // The null simulates each run's nominal loop once and draws the noise B times: draw k must be the
+  // replay of noiseReferenceLog with draw k's seed (what every draw simulated for itself before), score
+  // for score, and the draws must differ (else the null would hold one draw B times).
+  BenchmarkCase c = caseWith("lane_change", {"simulation.duration=8"});
+  const GapLog log = generateBenchmarkLog(c, SensorNoise{}, 100.0);
+  SimConfig nominal = benchmarkNominal(c.manoeuvre);
+  nominal.simulation.duration = 8.0;
+  DiagnosisOptions options;
+  const DataSplit split = splitData(prepareRuns({gapRun(log, nominal)}), {}, options);
+  const auto all = allSubsystems();
+  const NoiseNull null = noiseNull(split.train, split.held, all, options.replay, 3, 2);
+  ASSERT_EQ(null.draws(), 3);
+  for (unsigned k = 0; k < 3; ++k) {
+    std::vector<Dataset> held;
+    const auto signals = std::make_shared<const LogSignals>(
+        noiseReferenceLog(*split.held[0].config, *split.held[0].log, 9001u + 1000u * k));
+    for (const Dataset& set : split.held) held.push_back({signals, set.config, set.segments});
+    const Evaluation own = evaluate(nullptr, held, all, options.replay);
+    ASSERT_EQ(own.scores.size(), null.held[k].size());
+    for (const auto& [name, score] : own.scores) {
+      EXPECT_EQ(score.excess, null.held[k].at(name).excess) << "draw " << k << ", " << name;
+    }
+  }
+  EXPECT_NE(null.heldTotals()[0], null.heldTotals()[1]);
+  EXPECT_NE(null.heldTotals()[1], null.heldTotals()[2]);
 }
 
 TEST(NoiseNull, FalseAlarmsOnNoEffectLogsStayNearTheNominalRate) {
