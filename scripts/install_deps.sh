@@ -12,7 +12,7 @@ PACKAGES=(
   librosbag-dev python3-rosbag libnodeletlib-dev libnodeletlib-tools pluginlib-dev rviz
   libdiagnostic-updater-dev libdiagnostic-msgs-dev python3-diagnostic-msgs libdiagnostic-aggregator-tools rosdiagnostic
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure rosbash
-  libeigen3-dev libyaml-cpp-dev libceres-dev libgtest-dev nlohmann-json3-dev python3-matplotlib python3-numpy
+  libeigen3-dev libyaml-cpp-dev libceres-dev libboost-dev libgtest-dev nlohmann-json3-dev python3-matplotlib python3-numpy
   xvfb xauth imagemagick
   python3-distributed python3-dask python3-pytest python3-yaml
   clang-16 libfuzzer-16-dev libclang-rt-16-dev

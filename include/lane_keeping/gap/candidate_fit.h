@@ -1,6 +1,6 @@
 #pragma once
-/// Fitting one candidate effect (diagnosis.h, step 3): a robust coordinate search (grid + golden
-/// section per parameter), polished by Levenberg-Marquardt (Ceres) for smooth parameters, then the
+/// Fitting one candidate effect (diagnosis.h, step 3): a robust coordinate search (grid + Brent's
+/// minimisation per parameter), polished by Levenberg-Marquardt (Ceres) for smooth parameters, then the
 /// fit's parameters, uncertainty, bound flag and training / held-out scores.
 #include <map>
 #include <string>
@@ -49,7 +49,8 @@ struct CandidateFit {
 };
 
 /// Minimises the loss over parameter j with the others fixed: a grid over [lo, hi] (log-spaced for
-/// log-scale parameters), then golden section in the bracket around the best grid point.
+/// log-scale parameters), then Brent's method (parabolic and golden-section steps, Boost.Math) in the
+/// bracket around the best grid point, at most 10 evaluations.
 double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
                   int points, double current_loss);
 
@@ -57,15 +58,15 @@ double lineSearch(const CandidateObjective& objective, std::vector<double>& thet
 /// log-scale parameter, else +-15 % of the parameter's range; within its bounds.
 std::pair<double, double> narrowedRange(const EffectParameter& p, double value);
 
-/// Robust low-dimensional fit: coordinate-wise grid + golden section over the whole bounds, then a
+/// Robust low-dimensional fit: coordinate-wise grid + Brent over the whole bounds, then a
 /// second round in a narrowed range. (Gauss-Newton alone crawls here: stick-slip friction and
 /// saturations make the residuals far from linear in the parameters.)
 std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta = {});
 
-/// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt. Coarse to
-/// fine when `coarse_stride` > 1: the search and a first polish run on every coarse_stride-th piece of
-/// the data (decimatedData, pieces of the chassis horizon), two further steps on all of it, parameters
-/// the search left at a bound held there. A profile effect (no polish: its loss is not smooth) searches
+/// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt (forward
+/// differences; parameters the search left at a bound held there). Coarse to fine when `coarse_stride`
+/// > 1: the search and a first polish run on every coarse_stride-th piece of the data (decimatedData,
+/// pieces of the chassis horizon), two further steps on all of it. A profile effect (no polish: its loss is not smooth) searches
 /// all the data.
 std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride = 1);
 

@@ -1,8 +1,10 @@
-// A fit coarse to fine (candidate_fit.h): the search on a third of the data and a polish on all of it
-// must reach the optimum a search over all the data reaches; else the speed is bought with verdicts.
+// The fit machinery (candidate_fit.h). A line search must find the minimum of its line that a brute-force
+// scan finds; a fit coarse to fine (the search on a third of the data and a polish on all of it) must
+// reach the optimum a search over all the data reaches; else the speed is bought with verdicts.
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 
 #include "benchmark_objective_fixture.h"
 #include "lane_keeping/gap/candidate_fit.h"
@@ -10,6 +12,33 @@
 namespace lane_keeping {
 namespace diagnosis {
 namespace {
+
+TEST(LineSearch, FindsTheMinimumABruteForceScanOfTheLineFinds) {
+  // The Coulomb level of the benchmark's friction case on a 10 s log: a loss with a clear minimum
+  // inside the bounds, log-scaled. The grid (13 points) brackets it, Brent's method refines it.
+  const BenchmarkObjectiveFixture f("steering_friction-large-lane_change", 10.0, 100.0, 0.6);
+  const CandidateEffect& friction = candidateNamed("steering_friction");
+  CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  const EffectParameter& p = friction.params[0];
+  ASSERT_TRUE(p.log_scale);
+  std::vector<double> theta{p.initial, friction.params[1].initial};
+  const double start = objective.loss(theta);
+  const double found = lineSearch(objective, theta, 0, p.lower, p.upper, 13, start);
+  EXPECT_DOUBLE_EQ(found, objective.loss(theta)) << "the returned loss is not the loss at the returned point";
+
+  double scanned = std::numeric_limits<double>::infinity(), at = 0.0;
+  const int n = 241;  // 0.0125 decades apart over [lower, upper]
+  for (int i = 0; i < n; ++i) {
+    const double v = p.lower * std::pow(p.upper / p.lower, static_cast<double>(i) / (n - 1));
+    const double l = objective.loss({v, friction.params[1].initial});
+    if (l < scanned) scanned = l, at = v;
+  }
+  ASSERT_LT(scanned, 0.5 * start) << "the line has no minimum worth finding";
+  // Between the scan's points the loss can dip below them: the search may beat the scan, by little.
+  EXPECT_LE(found, scanned * 1.001) << "line search " << theta[0] << " N m, scan " << at << " N m";
+  EXPECT_NEAR(std::log(theta[0] / at), 0.0, std::log(p.upper / p.lower) / (n - 1))
+      << "line search " << theta[0] << " N m, scan " << at << " N m";
+}
 
 TEST(LeastSquaresFit, CoarseToFineReachesTheOptimumOfAllTheData) {
   // A 20 s lane change with LuGre friction in the column (the benchmark's case), at 100 Hz; the
