@@ -32,14 +32,16 @@ struct BenchmarkCase {
   /// The independent family: the case's own set-up (key=value on the manoeuvre's nominal, known to the
   /// diagnosis: gains, actuator strength, initial state, duration), its log rate (0: the command
   /// line's) and a factor on every sensor noise level.
-  std::vector<std::string> setup;
+  // (Empty default initialisers: a case braced with only its first fields then leaves these at their
+  // defaults without GCC's -Wmissing-field-initializers.)
+  std::vector<std::string> setup{};
   double log_rate = 0.0;
   double noise_scale = 1.0;
   /// A held-out run on another road (empty: none; blocks of the one log are held out): the diagnosis
   /// gets it as `--holdout` with a scenario of its own (its path, initial state and duration), as a
   /// user brings runs of different roads.
-  std::string heldout_manoeuvre;
-  std::vector<std::string> heldout_setup;  ///< scenario keys on top of the held-out manoeuvre
+  std::string heldout_manoeuvre{};
+  std::vector<std::string> heldout_setup{};  ///< scenario keys on top of the held-out manoeuvre
 };
 
 /// The held-out run of a case: its manoeuvre, the case's set-up plus heldout_setup, its own noise seed.

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <utility>
 
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/candidate_effects.h"
@@ -13,20 +12,6 @@
 
 namespace lane_keeping {
 namespace {
-
-/// A large in-list case (BenchmarkCase's other fields at their defaults).
-BenchmarkCase benchmarkCaseOf(const std::string& id, const std::string& truth, const std::string& manoeuvre,
-                              std::vector<std::string> overlay, unsigned seed) {
-  BenchmarkCase c;
-  c.id = id;
-  c.category = "in_list";
-  c.truth = truth;
-  c.magnitude = "large";
-  c.manoeuvre = manoeuvre;
-  c.truth_overlay = std::move(overlay);
-  c.seed = seed;
-  return c;
-}
 
 const CandidateEffect& form(const std::string& name, const std::string& form) {
   for (const auto& c : candidateEffects()) {
@@ -96,10 +81,10 @@ const RankedEffect& ranked(const GapReport& r, const std::string& effect) {
 TEST(CandidateForms, AColumnSensedOnTheMotorSideIsFoundInTheActuatorReplay) {
   // The PID closes on the column's motor side, the log shows the road wheel: the actuator replay on the
   // logged wheel angle carries a gap that the wheel-sensor column cannot change.
-  const BenchmarkCase c = benchmarkCaseOf("column-motor", "steering_compliance", "lane_change",
-                                          {"steering.column_stiffness=1500", "steering.column_damping=15",
-                                           "steering.column_inertia=0.05", "steering.angle_sensor=column"},
-                                          7);
+  BenchmarkCase c{"column-motor", "in_list", "steering_compliance", "large", "lane_change",
+                  {"steering.column_stiffness=1500", "steering.column_damping=15", "steering.column_inertia=0.05",
+                   "steering.angle_sensor=column"},
+                  7};
   const GapReport r = diagnose(c, {"steering_compliance", "actuation_delay", "steering_friction"}, 16.0, 500.0);
   EXPECT_EQ(r.where.subsystem, "actuator");
   EXPECT_EQ(r.verdict.effect, "steering_compliance") << r.verdict.reason;
@@ -112,7 +97,7 @@ TEST(CandidateForms, AColumnSensedOnTheMotorSideIsFoundInTheActuatorReplay) {
 TEST(CandidateForms, AHeadingBiasTheLogRecordsIsFoundInTheChassisReplay) {
   // The tracker and the log share a localisation 6 mrad off in heading: the tracker replay matches (it
   // sees the logged pose), the chassis replay integrates the biased heading into y.
-  const BenchmarkCase c = benchmarkCaseOf("localisation", "pose_bias", "bend", {"sensors.pose_bias_psi=0.006"}, 8);
+  BenchmarkCase c{"localisation", "in_list", "pose_bias", "large", "bend", {"sensors.pose_bias_psi=0.006"}, 8};
   const GapReport r = diagnose(c, {"pose_bias", "lateral_disturbance", "sensing_delay"}, 16.0, 200.0);
   // (The steering replay takes its lateral velocity from the chassis replay: the gap may show there.)
   EXPECT_TRUE(r.where.subsystem == "chassis" || r.where.subsystem == "steering") << r.where.subsystem;

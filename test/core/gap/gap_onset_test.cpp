@@ -13,14 +13,7 @@ namespace lane_keeping {
 namespace {
 
 BenchmarkCase crosswind(const std::string& id, std::vector<std::string> overlay) {
-  BenchmarkCase c;
-  c.id = id;
-  c.category = "in_list";
-  c.truth = "lateral_disturbance";
-  c.magnitude = "large";
-  c.manoeuvre = "sinusoid";
-  c.truth_overlay = std::move(overlay);
-  c.seed = 77;
+  BenchmarkCase c{id, "in_list", "lateral_disturbance", "large", "sinusoid", std::move(overlay), 77};
   c.setup = {"simulation.duration=20", "actuator.p=1250"};
   return c;
 }

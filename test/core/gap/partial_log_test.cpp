@@ -178,14 +178,10 @@ TEST(SpeedFromTheLog, TheReplaysFollowALoggedSpeedThatVaries) {
   SimConfig nominal = benchmarkNominal("sinusoid");  // constant 15 m/s
   const LogSignals signals(with_speed);
   EXPECT_TRUE(signals.speedVaries());
-  BenchmarkCase still;
-  still.id = "still";
-  still.category = still.truth = "none";
-  still.manoeuvre = "sinusoid";
-  still.truth_overlay = {"simulation.duration=16"};
-  still.seed = 9u;
-  // A constant speed with noise on it does not count as varying.
-  EXPECT_FALSE(LogSignals(generateBenchmarkLog(still, SensorNoise{}, 200.0)).speedVaries());
+  EXPECT_FALSE(LogSignals(generateBenchmarkLog(BenchmarkCase{"still", "none", "none", "", "sinusoid",
+                                                             {"simulation.duration=16"}, 9u},
+                                               SensorNoise{}, 200.0))
+                   .speedVaries());  // a constant speed with noise on it does not count as varying
   const std::vector<TimeSegment> all{{1.0, 16.0}};
   const LogSignals constant_signals(without_speed);
   const SubsystemReplay chassis_followed = replayChassis(nominal, signals, all);
