@@ -35,6 +35,11 @@ using Sigma1Cache = std::vector<std::vector<std::pair<double, double>>>;
 Evaluation evaluate(const ConfigChange& change, const std::vector<Dataset>& data, const std::set<std::string>& subsystems,
                     const ReplayOptions& options, const Sigma1Cache* sigma1 = nullptr);
 
+/// The evaluation of `first`'s data sets followed by `second`'s, from theirs: evaluate(change, A ++ B,
+/// ...) is concatenated(evaluate(change, A, ...), evaluate(change, B, ...)), the same traces, breaks,
+/// starts and scores, without replaying A and B again (the diagnosis's "where" report of all the data).
+Evaluation concatenated(Evaluation first, const Evaluation& second);
+
 /// Every subsystem name (subsystemNames()).
 std::set<std::string> allSubsystems();
 

@@ -53,6 +53,29 @@ Evaluation evaluate(const ConfigChange& change, const std::vector<Dataset>& data
   return ev;
 }
 
+Evaluation concatenated(Evaluation first, const Evaluation& second) {
+  // As evaluate() appends each data set's replay to the traces so far (ReplayTrace::append keeps the
+  // breaks; each trace keeps its first data set's scale, and the chassis its first sigma1 estimate).
+  for (const auto& [name, replay] : second.replays) {
+    const auto it = first.replays.find(name);
+    if (it == first.replays.end()) {
+      first.replays[name] = replay;
+      first.starts[name] = second.starts.at(name);
+      continue;
+    }
+    const std::size_t offset = it->second.traces.empty() ? 0 : it->second.traces[0].t.size();
+    for (std::size_t start : second.starts.at(name)) first.starts[name].push_back(offset + start);
+    for (std::size_t k = 0; k < it->second.traces.size() && k < replay.traces.size(); ++k) {
+      it->second.traces[k].append(replay.traces[k]);
+    }
+    it->second.diverged_intervals += replay.diverged_intervals;
+  }
+  first.sigma1.insert(first.sigma1.end(), second.sigma1.begin(), second.sigma1.end());
+  first.scores.clear();
+  for (const auto& [name, replay] : first.replays) first.scores[name] = scoreReplay(replay);
+  return first;
+}
+
 std::set<std::string> allSubsystems() {
   const auto& names = subsystemNames();
   return std::set<std::string>(names.begin(), names.end());
