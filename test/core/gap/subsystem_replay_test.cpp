@@ -13,6 +13,7 @@
 #include "lane_keeping/gap/gap_metrics.h"
 #include "lane_keeping/gap/log_signals.h"
 #include "lane_keeping/gap/noise_reference.h"
+#include "lane_keeping/gap/replay_shooting.h"
 #include "lane_keeping/gap/subsystem_replay.h"
 
 namespace lane_keeping {
@@ -88,6 +89,54 @@ TEST(Replay, LugreKingpinFrictionReproducesTheLog) {
                               "steering.breakaway_friction=6", "steering.friction_velocity=0.02",
                               "steering.friction_stiffness=2e4"}),
             0.01);
+}
+
+TEST(Replay, SamplesInsideAStepTakeTheHermiteInterpolantOfItsEnds) {
+  // A 1 kHz log against the 2 ms step: on a rigid column every other sample lies inside a step, its
+  // angle interpolated from the angle and rate at the step's ends; on a compliant one (a mode faster
+  // than the step) every sample ends a step. Against the same replay with a 1 ms step (every sample a
+  // step's end): the samples inside a step may differ from it no more than the step ends do, by the
+  // integration's own difference between the two steps (~1e-6 rad, where the angle moves up to ~1e-4
+  // rad per millisecond; an interpolant taking an end's value, or a linear one, would differ more
+  // inside than at the ends, and so would interpolating across the compliant column's 360 Hz mode).
+  for (const std::vector<std::string>& column :
+       {std::vector<std::string>{},
+        std::vector<std::string>{"steering.column_stiffness=1e5", "steering.column_damping=40",
+                                 "steering.column_inertia=0.02"}}) {
+    BenchmarkCase c;
+    c.id = "column-replay-1khz";
+    c.manoeuvre = "lane_change";
+    c.truth_overlay = column;
+    c.truth_overlay.push_back("simulation.duration=6");
+    const LogSignals log(generateBenchmarkLog(c, kNoNoise, 1000.0));
+    const SimConfig config = benchmarkTruth(c);
+    ReplayOptions interpolated, stepped;
+    interpolated.steering_step = 2e-3;
+    stepped.steering_step = 1e-3;
+    const std::vector<TimeSegment> segments{{0.6, 6.0}};
+    const ReplayTrace a = replaySteering(config, log, segments, interpolated).traces.at(0);
+    const ReplayTrace b = replaySteering(config, log, segments, stepped).traces.at(0);
+    ASSERT_EQ(a.t.size(), b.t.size());
+    ASSERT_GT(a.t.size(), 5000u);
+    // The 2 ms steps' ends: from each shooting interval's start, the furthest sample within 2 ms.
+    const std::vector<TimeSegment> intervals = replay::shootingIntervals(segments, interpolated.steering_horizon);
+    ASSERT_EQ(a.breaks.size(), intervals.size());
+    double ends = 0.0, inside = 0.0, moved = 0.0;
+    for (std::size_t k = 0; k < intervals.size(); ++k) {
+      const std::size_t begin = a.breaks[k], stop = k + 1 < a.breaks.size() ? a.breaks[k + 1] : a.t.size();
+      double step_start = intervals[k].t0;
+      for (std::size_t i = begin; i < stop; ++i) {
+        const bool end = i + 1 == stop || a.t[i + 1] - step_start > 2e-3 * (1.0 + 1e-9);
+        if (end) step_start = a.t[i];
+        double& worst = end || !column.empty() ? ends : inside;
+        worst = std::max(worst, std::fabs(a.predicted[i] - b.predicted[i]));
+        if (i > begin) moved = std::max(moved, std::fabs(b.predicted[i] - b.predicted[i - 1]));
+      }
+    }
+    EXPECT_LT(ends, 1e-5) << column.size();
+    EXPECT_LT(inside, 1.5 * ends + 1e-9) << column.size();  // (the compliant column: all are ends)
+    EXPECT_GT(moved, 3e-5) << column.size();
+  }
 }
 
 TEST(Replay, DistributedTreadWithCarcassLagReproducesTheLog) {
