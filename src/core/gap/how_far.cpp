@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <limits>
+#include <vector>
 
+#include "lane_keeping/common/parallel_for.h"
 #include "lane_keeping/gap/closed_loop_replay.h"
 
 namespace lane_keeping {
@@ -24,14 +26,28 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
     report->how_far.subsystems_after[name] = score.excess;
   }
   if (options.closed_loop) {
+    // Each run's nominal and corrected closed loops are independent: side by side on the threads
+    // (each starts from the lateral velocity its run's chassis replay estimates at the log's start).
+    std::vector<double> start_sigma1(runs.size(), kNaN);
+    parallelFor(runs.size(), options.threads, [&](std::size_t i) {
+      const Evaluation chassis = evaluate(nullptr, wholeLogs({runs[i]}, 0.0), {"chassis"}, options.replay);
+      if (!chassis.sigma1.empty() && !chassis.sigma1[0].empty()) start_sigma1[i] = chassis.sigma1[0].front().second;
+    });
+    std::vector<ClosedLoopReplay> nominal(runs.size()), corrected(runs.size());
+    parallelFor((winner ? 2 : 1) * runs.size(), options.threads, [&](std::size_t k) {
+      const std::size_t i = k % runs.size();
+      if (k < runs.size()) {
+        nominal[i] = closedLoopReplay(*runs[i].config, *runs[i].log, start_sigma1[i]);
+      } else {
+        corrected[i] = closedLoopReplay(changed(*runs[i].config, winner->change), *runs[i].log, start_sigma1[i]);
+      }
+    });
     double before = 0.0, after = 0.0;
     int counted = 0;
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const LogSignals& log = *runs[i].log;
-      const Evaluation chassis = evaluate(nullptr, wholeLogs({runs[i]}, 0.0), {"chassis"}, options.replay);
-      const double s1 = chassis.sigma1.empty() || chassis.sigma1[0].empty() ? kNaN : chassis.sigma1[0].front().second;
-      const ClosedLoopReplay b = closedLoopReplay(*runs[i].config, log, s1);
-      const ClosedLoopReplay a = winner ? closedLoopReplay(changed(*runs[i].config, winner->change), log, s1) : b;
+      const ClosedLoopReplay& b = nominal[i];
+      const ClosedLoopReplay& a = winner ? corrected[i] : b;
       if (!b.note.empty()) report->notes.push_back("nominal " + b.note);
       if (winner && !a.note.empty()) report->notes.push_back("corrected " + a.note);
       if (std::isfinite(b.gap) && std::isfinite(a.gap)) {
