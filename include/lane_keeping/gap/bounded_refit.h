@@ -17,14 +17,15 @@ namespace lane_keeping {
 namespace diagnosis {
 
 /// Fits again from theta with the closed loop required to stay bounded on `requirements` (see
-/// stabilityRequirements); *bounded_fit says whether the result does.
+/// stabilityRequirements); *bounded_fit says whether the result does. The line searches' grids are
+/// evaluated on `threads` threads (the result does not depend on it).
 std::vector<double> holdStable(CandidateObjective& objective, std::vector<double> theta,
                                const std::vector<BoundedLoopRequirement>& requirements,
-                               std::string* note, bool* bounded_fit);
+                               std::string* note, bool* bounded_fit, int threads = 1);
 
 /// Fits `fit` again from its least-squares parameters with its closed loop required to stay bounded
-/// on the logs in fit->unbounded_on, and scores it again.
-void refitBounded(const FitContext& context, const DiagnosisOptions& options, CandidateFit* fit);
+/// on the logs in fit->unbounded_on, and scores it again (holdStable's grids on `threads` threads).
+void refitBounded(const FitContext& context, const DiagnosisOptions& options, CandidateFit* fit, int threads = 1);
 
 /// Bounded refits where they could change the verdict. A least-squares fit whose closed loop leaves the
 /// logged bounds is contradicted by the logs; fitting it again under those bounds costs a closed-loop run

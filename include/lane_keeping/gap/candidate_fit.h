@@ -50,9 +50,10 @@ struct CandidateFit {
 
 /// Minimises the loss over parameter j with the others fixed: a grid over [lo, hi] (log-spaced for
 /// log-scale parameters), then Brent's method (parabolic and golden-section steps, Boost.Math) in the
-/// bracket around the best grid point, at most 10 evaluations.
+/// bracket around the best grid point, at most 10 evaluations. The grid's points are evaluated on
+/// `threads` threads (the result does not depend on it).
 double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
-                  int points, double current_loss);
+                  int points, double current_loss, int threads = 1);
 
 /// The range coordinateFit's second round searches around `value`: a third to three times it for a
 /// log-scale parameter, else +-15 % of the parameter's range; within its bounds.
@@ -60,17 +61,20 @@ std::pair<double, double> narrowedRange(const EffectParameter& p, double value);
 
 /// Robust low-dimensional fit: coordinate-wise grid + Brent over the whole bounds, then a
 /// second round in a narrowed range. (Gauss-Newton alone crawls here: stick-slip friction and
-/// saturations make the residuals far from linear in the parameters.)
-std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta = {});
+/// saturations make the residuals far from linear in the parameters.) The grids' points are evaluated
+/// on `threads` threads.
+std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta = {}, int threads = 1);
 
 /// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt (forward
 /// differences; parameters the search left at a bound held there). Coarse to fine when `coarse_stride`
-/// > 1: the search and a first polish run on every coarse_stride-th piece of the data (decimatedData,
-/// pieces of the chassis horizon), two further steps on all of it. A profile effect (no polish: its loss is not smooth) searches
+/// > 1 (the default, 3): the search and a first polish run on every coarse_stride-th piece of the data
+/// (decimatedData, pieces of the chassis horizon), one further step on all of it; else the search and
+/// the polish on all of it. A profile effect (no polish: its loss is not smooth) searches
 /// all the data.
 std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride = 1);
 
-/// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta.
+/// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta (`objective`
+/// over `context.train`, its replays the training scores).
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
               const DiagnosisOptions& options, CandidateFit* out);
 

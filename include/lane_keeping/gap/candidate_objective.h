@@ -39,6 +39,11 @@ class CandidateObjective {
   /// Residual vector for parameters theta (SI); false if the configuration is invalid, or if it makes
   /// the closed loop diverge on a log where stability is required.
   bool residuals(const std::vector<double>& theta, std::vector<double>* out) const;
+  /// The replays behind residuals(theta): those of the subsystems the effect changes, over this
+  /// objective's data (scoreFit keeps them as the fit's training scores).
+  Evaluation evaluation(const std::vector<double>& theta) const;
+  /// residuals(theta) from its replays `ev` = evaluation(theta), without replaying again.
+  bool residuals(const std::vector<double>& theta, const Evaluation& ev, std::vector<double>* out) const;
 
   /// Sum of squared residuals. Under a stability requirement a point whose closed loop diverges ranks
   /// after every bounded one, and the later it diverges the better — so that a coordinate search
@@ -69,7 +74,8 @@ class CandidateObjective {
  private:
   static constexpr double kUnstableLoss = 1e100;
 
-  void replayResiduals(const ConfigChange& change, std::vector<double>* out) const;
+  /// Neither an invalid configuration nor, under a stability requirement, a diverging closed loop.
+  bool admissible(const std::vector<double>& theta) const;
 
   /// 0 if the closed loop at theta stays bounded on every required log, else 1 - (time it took to
   /// diverge) / horizon, in (0, 1].

@@ -30,12 +30,12 @@ struct DiagnosisOptions {
   double half_explanation = 0.5;
   double min_evidence_per_parameter = 50.0;  ///< held-out evidence a candidate needs per fitted parameter
   double upstream_share = 0.2;      ///< chassis excess (relative to steering) that makes the chassis the "where"
-  /// Above 1: a fit's coordinate search runs on every coarse_fit_stride-th piece of the training data,
-  /// the end of its Levenberg-Marquardt polish on all of it (candidate_fit.h). Opt-in: at 3 both
-  /// benchmark families keep every verdict and the diagnoses take 10-30 % less in all, but the
-  /// `where` stage's fixed cost then exceeds 30 % of some diagnoses and the column's bounded refit,
-  /// started from another optimum, doubles on two logs (docs/gap.md, "Coarse to fine").
-  std::size_t coarse_fit_stride = 1;
+  /// Above 1: a fit's coordinate search and first polish run on every coarse_fit_stride-th piece of the
+  /// training data, one Levenberg-Marquardt step on all of it (candidate_fit.h). At 3 (the default since
+  /// 2026-11-26) both benchmark families keep every verdict, the held-out shrinks within 0.8 points,
+  /// and the benchmark's 60 s log is diagnosed in 8.7-8.8 s instead of 14.0-14.9 s (docs/gap.md,
+  /// "Coarse to fine"); 1 fits on all the data throughout.
+  std::size_t coarse_fit_stride = 3;
   int threads = 2;                  ///< candidates fitted in parallel
   bool closed_loop = true;          ///< run the closed-loop replays of "how far"
   /// A single run whose gap sets in mid-run (GapWhere::onset) and that no candidate explains over the

@@ -1,5 +1,6 @@
 #include "lane_keeping/gap/bounded_refit.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 
@@ -10,7 +11,7 @@ namespace diagnosis {
 
 std::vector<double> holdStable(CandidateObjective& objective, std::vector<double> theta,
                                const std::vector<BoundedLoopRequirement>& requirements,
-                               std::string* note, bool* bounded_fit) {
+                               std::string* note, bool* bounded_fit, int threads) {
   *bounded_fit = true;
   if (requirements.empty()) return theta;
   // The search checks the first kSearchHorizon seconds of each log (a 60 s log's closed loop costs
@@ -30,13 +31,13 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
     for (std::size_t j = 0; j < start.size(); ++j) {
       std::vector<double> moved = start;
       const auto& p = objective.effect().params[j];
-      const double loss = lineSearch(objective, moved, j, p.lower, p.upper, 13, start_loss);
+      const double loss = lineSearch(objective, moved, j, p.lower, p.upper, 13, start_loss, threads);
       if (loss < best_loss) {
         best_loss = loss;
         best = moved;
       }
     }
-    return coordinateFit(objective, best);
+    return coordinateFit(objective, best, threads);
   };
   auto bounded = [&](const std::vector<double>& t) {
     for (const auto& r : requirements) {
@@ -56,7 +57,7 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
     double loss = objective.loss(theta);
     for (std::size_t j = 0; j < theta.size() && !ok; ++j) {
       const auto [lo, hi] = narrowedRange(objective.effect().params[j], theta[j]);
-      loss = lineSearch(objective, theta, j, lo, hi, 7, loss);
+      loss = lineSearch(objective, theta, j, lo, hi, 7, loss, threads);
       ok = bounded(theta);
     }
     if (!ok) {
@@ -72,13 +73,13 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
   return theta;
 }
 
-void refitBounded(const FitContext& context, const DiagnosisOptions& options, CandidateFit* fit) {
+void refitBounded(const FitContext& context, const DiagnosisOptions& options, CandidateFit* fit, int threads) {
   CandidateObjective objective(*fit->effect, *context.nominal, *context.train, options.replay,
                                context.nominal_train->sigma1, context.available);
   std::vector<double> theta;
   bool bounded = false;
   try {
-    theta = holdStable(objective, fit->theta, fit->unbounded_on, &fit->stability_note, &bounded);
+    theta = holdStable(objective, fit->theta, fit->unbounded_on, &fit->stability_note, &bounded, threads);
   } catch (const std::exception& e) {
     fit->ok = false;
     fit->note = std::string("bounded refit failed: ") + e.what();
@@ -116,11 +117,14 @@ std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitCont
     }
   }
   std::vector<double> refit_seconds(refit.size(), 0.0);
+  // The threads the refits leave idle evaluate their line searches' grids (usually one refit, alone
+  // after the other fits: with two threads its grids take half the time, the same points and result).
+  const int inner = refit.empty() ? 1 : std::max(1, options.threads / static_cast<int>(refit.size()));
   parallelFor(
       refit.size(), options.threads,
       [&](std::size_t k) {
         const Clock::time_point start = Clock::now();
-        refitBounded(context, options, &fits[refit[k]]);
+        refitBounded(context, options, &fits[refit[k]], inner);
         refit_seconds[k] = std::chrono::duration<double>(Clock::now() - start).count();
       },
       [&](std::size_t k) {

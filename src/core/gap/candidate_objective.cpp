@@ -1,6 +1,7 @@
 #include "lane_keeping/gap/candidate_objective.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <limits>
 
@@ -39,10 +40,25 @@ SimConfig CandidateObjective::configFor(const std::vector<double>& theta) const 
   return c;
 }
 
+bool CandidateObjective::admissible(const std::vector<double>& theta) const {
+  return configFor(theta).problems().empty() && !(divergence(theta) > 0.0);
+}
+
+Evaluation CandidateObjective::evaluation(const std::vector<double>& theta) const {
+  const bool reuse = subsystems_.count("chassis") == 0;
+  return evaluate(changeFor(theta), data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr);
+}
+
 bool CandidateObjective::residuals(const std::vector<double>& theta, std::vector<double>* out) const {
-  const ConfigChange change = changeFor(theta);
-  if (!configFor(theta).problems().empty() || divergence(theta) > 0.0) return false;
-  replayResiduals(change, out);
+  if (!admissible(theta)) return false;
+  *out = fitResiduals(evaluation(theta));
+  return true;
+}
+
+bool CandidateObjective::residuals(const std::vector<double>& theta, const Evaluation& ev,
+                                   std::vector<double>* out) const {
+  if (!admissible(theta)) return false;
+  *out = fitResiduals(ev);
   return true;
 }
 
@@ -75,9 +91,7 @@ double CandidateObjective::loss(const std::vector<double>& theta) const {
   auto compute = [&] {
     if (!configFor(theta).problems().empty()) return std::numeric_limits<double>::infinity();
     if (const double d = divergence(theta); d > 0.0) return kUnstableLoss * (1.0 + d);
-    std::vector<double> r;
-    replayResiduals(changeFor(theta), &r);
-    return sumOfSquares(r);
+    return sumOfSquares(fitResiduals(evaluation(theta)));
   };
   return memoizable(theta) ? remembered(memo_mutex_, losses_, theta, compute) : compute();
 }
@@ -93,11 +107,6 @@ LoopDivergence CandidateObjective::bounds(const std::vector<double>& theta, cons
   if (!memoizable(theta) || !memoizable({r.horizon, r.max_steering_angle, r.max_torque})) return compute();
   return remembered(memo_mutex_, bounds_,
                     {theta, RequirementKey{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque}}, compute);
-}
-
-void CandidateObjective::replayResiduals(const ConfigChange& change, std::vector<double>* out) const {
-  const bool reuse = subsystems_.count("chassis") == 0;
-  *out = fitResiduals(evaluate(change, data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr));
 }
 
 double CandidateObjective::divergence(const std::vector<double>& theta) const {

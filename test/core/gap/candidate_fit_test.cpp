@@ -40,6 +40,25 @@ TEST(LineSearch, FindsTheMinimumABruteForceScanOfTheLineFinds) {
       << "line search " << theta[0] << " N m, scan " << at << " N m";
 }
 
+TEST(LineSearch, OnTwoThreadsIsTheSearchOnOne) {
+  // The bounded refit evaluates its grids on the threads the other fits left idle: the points, and so
+  // the result, must be those of one thread, bit for bit (two objectives: nothing remembered between).
+  const BenchmarkObjectiveFixture f("steering_friction-large-lane_change", 10.0, 100.0, 0.6);
+  const CandidateEffect& friction = candidateNamed("steering_friction");
+  std::vector<std::vector<double>> found;
+  std::vector<double> losses;
+  for (int threads : {1, 2}) {
+    CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    const EffectParameter& p = friction.params[0];
+    std::vector<double> theta{p.initial, friction.params[1].initial};
+    losses.push_back(lineSearch(objective, theta, 0, p.lower, p.upper, 13, objective.loss(theta), threads));
+    found.push_back(theta);
+  }
+  EXPECT_EQ(found[0], found[1]);
+  EXPECT_EQ(losses[0], losses[1]);
+  EXPECT_NE(found[0][0], friction.params[0].initial) << "the search did not move: nothing compared";
+}
+
 TEST(LeastSquaresFit, CoarseToFineReachesTheOptimumOfAllTheData) {
   // A 20 s lane change with LuGre friction in the column (the benchmark's case), at 100 Hz; the
   // candidate's Coulomb + viscous friction fits it without a true value, so the reference is the fit
