@@ -2,7 +2,7 @@
 // 1 kHz with all eleven candidates (held-out blocks, closed-loop replay included), on the threads given.
 // The logs are generated like the withheld-effect benchmark (steering friction hidden, sensor noise).
 //   lk_bench_gap [--threads N] [--duration S] [--rate HZ] [--effects a,b,...] [--case ID] [--coarse-stride K]
-// (--coarse-stride: DiagnosisOptions::coarse_fit_stride, e.g. 3 to time the fits coarse to fine;
+// (--coarse-stride: DiagnosisOptions::coarse_fit_stride, default 3, 1 to time the fits on all the data;
 // --rate: one log rate instead of both; --effects: fit only these candidates, to time one of them;
 // --case: another benchmark case than steering_friction-large-lane_change, e.g. a column log whose
 // winning fit must be held to a bounded closed loop.)

@@ -42,7 +42,7 @@ void usage(std::ostream& out) {
          "  --noise-reference-draws N   draws of the noise-only null: the detection test's tail, and the largest\n"
          "             is the noise reference the gap is net of (default 19: a test at 5 %; 0 = raw excess, no test)\n"
          "  --coarse-fit-stride K   fit each candidate coarse to fine: search on every K-th 2 s piece of the\n"
-         "             training data, finish on all of it (default 1: search all the data; docs/gap.md)\n";
+         "             training data, finish on all of it (default 3; 1: search all the data; docs/gap.md)\n";
 }
 
 std::vector<std::string> split(const std::string& text) {
@@ -84,7 +84,7 @@ int main(int argc, char** argv) {
     else if (arg == "--set") sets.push_back(value());
     else if (arg == "--log" || arg == "--holdout") {
       last_run = arg == "--log" ? &logs : &heldout;
-      last_run->push_back({value(), ""});
+      last_run->push_back({value(), "", ""});
     } else if (arg == "--scenario" || arg == "--log-map") {
       const std::string file = value();
       if (previous_run == nullptr) {
