@@ -52,6 +52,12 @@ class CandidateObjective {
   /// first move along it), and under a requirement each visit costs a closed-loop run.
   double loss(const std::vector<double>& theta) const;
 
+  /// The sum of squared residuals at theta whatever the stability requirement (+inf for an invalid
+  /// configuration): loss(theta) where the closed loop stays bounded. Remembered per theta.
+  double replayLoss(const std::vector<double>& theta) const;
+  /// Whether a stability requirement is in force (requireStability).
+  bool constrained() const { return !stable_on_.empty(); }
+
   /// Whether the closed loop at theta leaves requirement r's bounds (boundsCheck), remembered per theta
   /// and requirement.
   LoopDivergence bounds(const std::vector<double>& theta, const BoundedLoopRequirement& r) const;
@@ -95,6 +101,7 @@ class CandidateObjective {
   // from one thread; Ceres may evaluate residuals() from several, hence the lock.
   mutable std::mutex memo_mutex_;
   mutable std::map<std::vector<double>, double> losses_;
+  mutable std::map<std::vector<double>, double> replay_losses_;
   mutable std::map<std::pair<std::vector<double>, RequirementKey>, LoopDivergence> bounds_;
 };
 

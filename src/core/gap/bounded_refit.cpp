@@ -79,7 +79,16 @@ void refitBounded(const FitContext& context, const DiagnosisOptions& options, Ca
   std::vector<double> theta;
   bool bounded = false;
   try {
-    theta = holdStable(objective, fit->theta, fit->unbounded_on, &fit->stability_note, &bounded, threads);
+    // Searched on the fits' coarse data (DiagnosisOptions::coarse_fit_stride) as the fit was, scored
+    // on all of it; a profile effect (a delay, the torque limit) on all of it, as its fit. (Replays
+    // were a third of the column's refits on the benchmark's two small column logs; most of the rest
+    // is closed-loop runs, see lineSearch.)
+    const std::vector<Dataset> coarse =
+        options.coarse_fit_stride > 1 && !fit->effect->profile
+            ? decimatedData(*context.train, options.replay.chassis_horizon, options.coarse_fit_stride)
+            : *context.train;
+    CandidateObjective search = objective.on(coarse);
+    theta = holdStable(search, fit->theta, fit->unbounded_on, &fit->stability_note, &bounded, threads);
   } catch (const std::exception& e) {
     fit->ok = false;
     fit->note = std::string("bounded refit failed: ") + e.what();

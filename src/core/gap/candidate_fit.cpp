@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <deque>
+#include <functional>
 #include <limits>
 #include <mutex>
 
@@ -145,16 +146,53 @@ double lineSearch(const CandidateObjective& objective, std::vector<double>& thet
   auto toAxis = [&](double v) { return p.log_scale ? std::log(v) : v; };
   auto fromAxis = [&](double u) { return p.log_scale ? std::exp(u) : u; };
   const double ua = toAxis(lo), ub = toAxis(hi);
-  std::vector<double> grid(points), losses(points);
+  std::vector<double> grid(points), losses(points, std::numeric_limits<double>::infinity());
   for (int i = 0; i < points; ++i) grid[i] = ua + (ub - ua) * i / (points - 1);
-  if (threads <= 1) {
-    for (int i = 0; i < points; ++i) losses[i] = lossAt(fromAxis(grid[i]));
+  auto pointAt = [&](std::size_t i) {
+    std::vector<double> t = theta;
+    t[j] = fromAxis(grid[i]);
+    return t;
+  };
+  // The grid's points are independent (the objective is safe to call from several threads): side by
+  // side, each loss in its place, so the search is the same whatever the threads.
+  auto each = [&](std::size_t count, const std::function<void(std::size_t)>& body) {
+    if (threads <= 1) {
+      for (std::size_t i = 0; i < count; ++i) body(i);
+    } else {
+      parallelFor(count, threads, body);
+    }
+  };
+  std::size_t best = 0;
+  if (!objective.constrained()) {
+    each(static_cast<std::size_t>(points), [&](std::size_t i) { losses[i] = objective.loss(pointAt(i)); });
+    best = static_cast<std::size_t>(std::min_element(losses.begin(), losses.end()) - losses.begin());
   } else {
-    // The grid's points are independent (the objective is safe to call from several threads): side by
-    // side, each loss in its place, so the search is the same whatever the threads.
-    parallelFor(static_cast<std::size_t>(points), threads, [&](std::size_t i) { losses[i] = lossAt(fromAxis(grid[i])); });
+    // Under a stability requirement a point's loss needs a closed-loop run, and only the grid's best point
+    // matters here. A bounded point's loss is its replay loss, a diverging one's ranks after every bounded
+    // one: so the replays first, then the closed loops in order of replay loss until the first bounded
+    // point, which is the best (as min_element over every point's loss would find it, ties to the lower
+    // index). The bounded refit of a column (issue 18) spent most of its time checking points of the grid
+    // that could not be its best.
+    std::vector<double> replayed(points);
+    each(static_cast<std::size_t>(points), [&](std::size_t i) { replayed[i] = objective.replayLoss(pointAt(i)); });
+    std::vector<std::size_t> order(points);
+    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return replayed[a] < replayed[b]; });
+    bool found = false;
+    const std::size_t batch = static_cast<std::size_t>(std::max(1, threads));
+    for (std::size_t k = 0; k < order.size() && !found; k += batch) {
+      const std::size_t n = std::min(batch, order.size() - k);
+      each(n, [&](std::size_t m) { losses[order[k + m]] = objective.loss(pointAt(order[k + m])); });
+      for (std::size_t m = 0; m < n && !found; ++m) {
+        const std::size_t i = order[k + m];
+        if (std::isfinite(losses[i]) && losses[i] == replayed[i]) {
+          best = i;
+          found = true;
+        }
+      }
+    }
+    if (!found) best = static_cast<std::size_t>(std::min_element(losses.begin(), losses.end()) - losses.begin());
   }
-  const std::size_t best = static_cast<std::size_t>(std::min_element(losses.begin(), losses.end()) - losses.begin());
   // Brent's minimisation in the bracket around the best grid point (Boost.Math): parabolic steps
   // where the loss is smooth, golden-section ones where it is not, to ~1e-3 (|u| + 1/4) on the axis.
   // (It starts at the bracket's end, a grid point the objective's memo returns.) Golden section alone

@@ -87,11 +87,19 @@ typename Memo::mapped_type remembered(std::mutex& mutex, Memo& memo, typename Me
 
 }  // namespace
 
+double CandidateObjective::replayLoss(const std::vector<double>& theta) const {
+  auto compute = [&] {
+    if (!configFor(theta).problems().empty()) return std::numeric_limits<double>::infinity();
+    return sumOfSquares(fitResiduals(evaluation(theta)));
+  };
+  return memoizable(theta) ? remembered(memo_mutex_, replay_losses_, theta, compute) : compute();
+}
+
 double CandidateObjective::loss(const std::vector<double>& theta) const {
   auto compute = [&] {
     if (!configFor(theta).problems().empty()) return std::numeric_limits<double>::infinity();
     if (const double d = divergence(theta); d > 0.0) return kUnstableLoss * (1.0 + d);
-    return sumOfSquares(fitResiduals(evaluation(theta)));
+    return replayLoss(theta);
   };
   return memoizable(theta) ? remembered(memo_mutex_, losses_, theta, compute) : compute();
 }

@@ -59,6 +59,49 @@ TEST(LineSearch, OnTwoThreadsIsTheSearchOnOne) {
   EXPECT_NE(found[0][0], friction.params[0].initial) << "the search did not move: nothing compared";
 }
 
+TEST(LineSearch, UnderAStabilityRequirementNoGridPointBeatsIt) {
+  // A column's damping searched with its closed loop required to stay bounded (as the bounded refit
+  // does): the grid's closed loops run in order of replay loss until the first bounded point, taken as
+  // the grid's best. No point of the grid may then have a lower loss than the search's result (each
+  // point's loss on a fresh objective, closed loop and all), and one and two threads (checks one and
+  // two at a time) must agree bit for bit. Low damping diverges, so both kinds of point are on the line.
+  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
+  const CandidateEffect& column = candidateNamed("steering_compliance");
+  // The logged bounds as stabilityRequirements sets them (1.5 times the steering range + 0.02 rad, twice
+  // the torque range + 5 N m), over the log's first 3 s.
+  const LogSignals& log = *f.runs[0].log;
+  double angle = 0.0, torque = 0.0;
+  for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
+  for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
+  const BoundedLoopRequirement required{&log, f.runs[0].config.get(), 3.0, 1.5 * angle + 0.02, 2.0 * torque + 5.0};
+  const EffectParameter& damping = column.params[1];
+  const std::vector<double> start{4000, 0.5, column.params[2].initial};
+  std::vector<std::vector<double>> found;
+  std::vector<double> losses;
+  for (int threads : {1, 2}) {
+    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    objective.requireStability({required});
+    std::vector<double> theta = start;
+    losses.push_back(lineSearch(objective, theta, 1, damping.lower, damping.upper, 13, objective.loss(theta), threads));
+    found.push_back(theta);
+  }
+  EXPECT_EQ(found[0], found[1]);
+  EXPECT_EQ(losses[0], losses[1]);
+  CandidateObjective fresh(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  fresh.requireStability({required});
+  int bounded = 0, diverging = 0;
+  for (int i = 0; i < 13; ++i) {
+    std::vector<double> point = start;
+    const double ua = std::log(damping.lower), ub = std::log(damping.upper);
+    point[1] = std::exp(ua + (ub - ua) * i / 12);  // lineSearch's grid
+    const double loss = fresh.loss(point);
+    (loss == fresh.replayLoss(point) ? bounded : diverging) += 1;
+    EXPECT_GE(loss, losses[0]) << "grid point " << i << " (damping " << point[1] << ") beats the search";
+  }
+  EXPECT_GT(bounded, 0);
+  EXPECT_GT(diverging, 0) << "no diverging point on the line: the ordering was not exercised";
+}
+
 TEST(LeastSquaresFit, CoarseToFineReachesTheOptimumOfAllTheData) {
   // A 20 s lane change with LuGre friction in the column (the benchmark's case), at 100 Hz; the
   // candidate's Coulomb + viscous friction fits it without a true value, so the reference is the fit
