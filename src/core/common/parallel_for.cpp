@@ -36,10 +36,14 @@ void parallelFor(std::size_t count, int threads, const std::function<void(std::s
       }
     }
   };
-  std::vector<std::thread> pool;
   const std::size_t n = std::max<std::size_t>(1, std::min<std::size_t>(static_cast<std::size_t>(std::max(1, threads)), count));
-  for (std::size_t i = 0; i < n; ++i) pool.emplace_back(worker);
-  for (auto& t : pool) t.join();
+  if (n == 1) {
+    worker();  // on the calling thread, in index order: no thread to start for a one-thread grid
+  } else {
+    std::vector<std::thread> pool;
+    for (std::size_t i = 0; i < n; ++i) pool.emplace_back(worker);
+    for (auto& t : pool) t.join();
+  }
   if (failure) std::rethrow_exception(failure);
 }
 

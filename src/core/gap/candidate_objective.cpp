@@ -1,7 +1,6 @@
 #include "lane_keeping/gap/candidate_objective.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <limits>
 

@@ -30,6 +30,19 @@ TEST(ParallelFor, RunsEveryIndexOnceOnTheThreadsAsked) {
   EXPECT_LE(workers.size(), 3u);
 }
 
+TEST(ParallelFor, OneThreadRunsTheJobsInOrderOnTheCaller) {
+  // (A line search's grid on one thread: no thread started per grid.)
+  std::vector<std::size_t> order;
+  std::set<std::thread::id> workers;
+  parallelFor(20, 1, [&](std::size_t i) {
+    order.push_back(i);
+    workers.insert(std::this_thread::get_id());
+  });
+  ASSERT_EQ(order.size(), 20u);
+  for (std::size_t i = 0; i < order.size(); ++i) EXPECT_EQ(order[i], i);
+  EXPECT_EQ(workers, std::set<std::thread::id>{std::this_thread::get_id()});
+}
+
 TEST(ParallelFor, AnExceptionReachesTheCallerAfterEveryOtherIndexRan) {
   // Two jobs throw: the lowest index's exception is the one rethrown, whichever thread finished first,
   // and the jobs that did not throw all ran.

@@ -32,13 +32,19 @@ BenchmarkCase shortCase(const std::string& id, double duration) {
   return c;
 }
 
-/// RMS of the normalised residual of the replay's delta trace, over all shooting intervals.
-double steeringMismatch(const std::vector<std::string>& column) {
+/// A lane change of `duration` seconds whose truth has this steering column (benchmark overlays).
+BenchmarkCase columnCase(const std::string& id, const std::vector<std::string>& column, double duration) {
   BenchmarkCase c;
-  c.id = "column-replay";
+  c.id = id;
   c.manoeuvre = "lane_change";
   c.truth_overlay = column;
-  c.truth_overlay.push_back("simulation.duration=8");
+  c.truth_overlay.push_back("simulation.duration=" + std::to_string(duration));
+  return c;
+}
+
+/// RMS of the normalised residual of the replay's delta trace, over all shooting intervals.
+double steeringMismatch(const std::vector<std::string>& column) {
+  const BenchmarkCase c = columnCase("column-replay", column, 8.0);
   const LogSignals log(generateBenchmarkLog(c, kNoNoise, 500.0));
   const SimConfig config = benchmarkTruth(c);
   const SubsystemReplay replay = replaySteering(config, log, {{0.6, 8.0}});
@@ -103,11 +109,7 @@ TEST(Replay, SamplesInsideAStepTakeTheHermiteInterpolantOfItsEnds) {
        {std::vector<std::string>{},
         std::vector<std::string>{"steering.column_stiffness=1e5", "steering.column_damping=40",
                                  "steering.column_inertia=0.02"}}) {
-    BenchmarkCase c;
-    c.id = "column-replay-1khz";
-    c.manoeuvre = "lane_change";
-    c.truth_overlay = column;
-    c.truth_overlay.push_back("simulation.duration=6");
+    const BenchmarkCase c = columnCase("column-replay-1khz", column, 6.0);
     const LogSignals log(generateBenchmarkLog(c, kNoNoise, 1000.0));
     const SimConfig config = benchmarkTruth(c);
     ReplayOptions interpolated, stepped;
