@@ -51,7 +51,11 @@ struct CandidateFit {
 /// Minimises the loss over parameter j with the others fixed: a grid over [lo, hi] (log-spaced for
 /// log-scale parameters), then Brent's method (parabolic and golden-section steps, Boost.Math) in the
 /// bracket around the best grid point, at most 10 evaluations. The grid's points are evaluated on
-/// `threads` threads (the result does not depend on it).
+/// `threads` threads (the result does not depend on it). Under a stability requirement
+/// (CandidateObjective::constrained) with a bounded grid point, Brent minimises the replay loss alone
+/// and the closed loop runs at its result, then, if that point leaves the bounds, at each step of a
+/// bisection towards it from the bounded side (at most 4); each other boundary between a bounded grid
+/// point and a diverging one of lower replay loss is bisected too.
 double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
                   int points, double current_loss, int threads = 1);
 

@@ -62,6 +62,17 @@ class CandidateObjective {
   /// and requirement.
   LoopDivergence bounds(const std::vector<double>& theta, const BoundedLoopRequirement& r) const;
 
+  /// How many closed-loop runs (bounds checks) and replays (replayLoss points) this objective has
+  /// made: a refit's evaluation count.
+  std::size_t closedLoopRuns() const {
+    std::lock_guard<std::mutex> lock(memo_mutex_);
+    return bounds_.size();
+  }
+  std::size_t replays() const {
+    std::lock_guard<std::mutex> lock(memo_mutex_);
+    return replay_losses_.size();
+  }
+
   /// The same loss over other data (such as decimatedData's coarse subset of this one's), with no
   /// stability requirement and nothing remembered. `data` must outlive the result.
   CandidateObjective on(const std::vector<Dataset>& data) const {

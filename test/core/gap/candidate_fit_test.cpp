@@ -102,6 +102,49 @@ TEST(LineSearch, UnderAStabilityRequirementNoGridPointBeatsIt) {
   EXPECT_GT(diverging, 0) << "no diverging point on the line: the ordering was not exercised";
 }
 
+TEST(LineSearch, UnderAStabilityRequirementFindsTheBoundedMinimumAScanFinds) {
+  // The column's damping at 4,000 N m/rad, its closed loop required to stay bounded over the log's first
+  // 3 s: the replay loss falls towards 0.75 N m s/rad, the loop diverges below ~6, so the bounded
+  // minimum lies on that boundary, between two grid points (5.6: diverges; 10: bounded). The grid's
+  // best bounded point is the far end, 100, by 1e-9 of the loss: a search confined to its bracket (as
+  // this one was before the boundary pass) returned 100 and a loss 0.35 % above the scan's. The search
+  // must find the bounded minimum a brute-force scan of the line's constrained loss finds, at most one
+  // closed loop per grid point and 1 + 4 per boundary (Brent's replay minimum, the bisection).
+  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
+  const CandidateEffect& column = candidateNamed("steering_compliance");
+  const LogSignals& log = *f.runs[0].log;
+  double angle = 0.0, torque = 0.0;
+  for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
+  for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
+  const BoundedLoopRequirement required{&log, f.runs[0].config.get(), 3.0, 1.5 * angle + 0.02, 2.0 * torque + 5.0};
+  const EffectParameter& damping = column.params[1];
+  const std::vector<double> start{4000, 2.0, column.params[2].initial};
+  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  objective.requireStability({required});
+  std::vector<double> theta = start;
+  const double found = lineSearch(objective, theta, 1, damping.lower, damping.upper, 13, objective.loss(theta));
+  EXPECT_LE(objective.closedLoopRuns(), 13u + 2u * (1u + 4u));
+
+  CandidateObjective fresh(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  fresh.requireStability({required});
+  EXPECT_EQ(fresh.loss(theta), fresh.replayLoss(theta)) << "the search's result leaves the bounds";
+  EXPECT_EQ(fresh.loss(theta), found);
+  const int n = 193;  // 1/16 of the grid's spacing apart
+  double scanned = std::numeric_limits<double>::infinity(), unconstrained = scanned, at = 0.0;
+  int diverging = 0;
+  for (int i = 0; i < n; ++i) {
+    std::vector<double> point = start;
+    point[1] = damping.lower * std::pow(damping.upper / damping.lower, static_cast<double>(i) / (n - 1));
+    const double l = fresh.loss(point), r = fresh.replayLoss(point);
+    if (l != r) ++diverging;
+    unconstrained = std::min(unconstrained, r);
+    if (l < scanned) scanned = l, at = point[1];
+  }
+  ASSERT_GT(diverging, 0) << "the line has no diverging point";
+  ASSERT_LT(unconstrained, 0.999 * scanned) << "the replay loss has its minimum in the bounded region: no boundary";
+  EXPECT_LE(found, scanned * (1.0 + 1e-4)) << "search " << theta[1] << " N m s/rad, scan " << at;
+}
+
 TEST(LeastSquaresFit, CoarseToFineReachesTheOptimumOfAllTheData) {
   // A 20 s lane change with LuGre friction in the column (the benchmark's case), at 100 Hz; the
   // candidate's Coulomb + viscous friction fits it without a true value, so the reference is the fit
