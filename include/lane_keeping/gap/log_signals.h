@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "lane_keeping/gap/gap_log.h"
+#include "lane_keeping/gap/sample_index.h"
 
 namespace lane_keeping {
 
@@ -57,8 +58,8 @@ class LogSignals {
   /// Values at the sample times.
   const std::vector<double>& samples(Channel c) const { return values_[c]; }
   const std::vector<double>& times() const { return log_.t; }
-  /// Index of the last sample at or before t (0 if before the start).
-  std::size_t indexAtOrBefore(double t) const;
+  /// Index of the last sample at or before t (0 if before the start): O(1) on a uniform log.
+  std::size_t indexAtOrBefore(double t) const { return index_.atOrBefore(log_.t, t); }
 
   static const char* name(Channel c);
 
@@ -70,6 +71,7 @@ class LogSignals {
 
  private:
   GapLog log_;
+  SampleIndex index_;
   std::vector<std::vector<double>> values_;
   std::vector<std::vector<double>> smoothed_;  ///< per channel; empty where nearestAlongSmoothed interpolates
   std::vector<double> noise_;

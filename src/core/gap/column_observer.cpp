@@ -27,9 +27,9 @@ double appliedTorque(const SteeringParams& p, double m) {
 /// read off exp(S h) for S = [[A, B, 0], [0, 0, I], [0, 0, 0]] (the input and its constant slope as
 /// states; Van Loan's block form).
 struct HoldStep {
-  double h = -1.0;
-  Eigen::Matrix2d phi;
-  Eigen::Matrix<double, 2, 3> gamma, lambda;
+  double h = -1.0;  // none computed yet
+  Eigen::Matrix2d phi = Eigen::Matrix2d::Zero();
+  Eigen::Matrix<double, 2, 3> gamma = Eigen::Matrix<double, 2, 3>::Zero(), lambda = Eigen::Matrix<double, 2, 3>::Zero();
 
   void compute(const Eigen::Matrix2d& a, const Eigen::Matrix<double, 2, 3>& b, double step) {
     Eigen::Matrix<double, 8, 8> s = Eigen::Matrix<double, 8, 8>::Zero();

@@ -131,7 +131,7 @@ double fourthDifferenceNoise(const std::vector<double>& v) {
 }
 
 LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
-    : log_(std::move(log)), values_(kChannels), smoothed_(kChannels), noise_(kChannels, 0.0) {
+    : log_(std::move(log)), index_(log_.t), values_(kChannels), smoothed_(kChannels), noise_(kChannels, 0.0) {
   const auto& t = log_.t;
   values_[kX] = log_.x;
   values_[kY] = log_.y;
@@ -197,13 +197,6 @@ double LogSignals::fastestSpeed(double configured) const {
   double fastest = 0.0;
   for (double v : values_[kSpeed]) fastest = std::max(fastest, std::fabs(v));
   return fastest;
-}
-
-std::size_t LogSignals::indexAtOrBefore(double t) const {
-  const auto& times = log_.t;
-  if (t <= times.front()) return 0;
-  const auto it = std::upper_bound(times.begin(), times.end(), t);
-  return static_cast<std::size_t>(it - times.begin()) - 1;
 }
 
 double LogSignals::at(Channel c, double t) const {
