@@ -10,6 +10,7 @@ delays.* of the run's configuration.
 """
 import sys
 import threading
+import time
 import unittest
 
 import numpy as np
@@ -74,8 +75,18 @@ class CheckHopDelays(unittest.TestCase):
         self.assertIsNotNone(status)
         self.assertEqual(status.state, status.COMPLETED, status.message)
         rospy.sleep(rospy.Duration(0))
-        d = recorder.arrays()
         cfg = rospy.get_param('/%s/config' % ns)
+        # The status can arrive before the last samples of the four streams (separate connections): wait,
+        # up to 5 s of wall time, until each stream reaches the run's end (a loaded CI machine read early
+        # stopped short and the delays fitted to the truncated streams were wrong).
+        end = float(cfg['simulation']['duration']) - 0.01
+        deadline = time.time() + 5.0
+        while time.time() < deadline:
+            d = recorder.arrays()
+            if all(len(v) > 0 and v[-1, 0] >= end for v in d.values()):
+                break
+            time.sleep(0.05)
+        d = recorder.arrays()
         delays = cfg['delays']
         k_psi, k_y = float(cfg['tracker']['k_psi']), float(cfg['tracker']['k_y'])
         p = float(cfg['actuator']['p'])
