@@ -13,6 +13,16 @@ namespace lane_keeping {
 namespace diagnosis {
 namespace {
 
+/// The logged bounds as stabilityRequirements sets them (1.5 times the steering range + 0.02 rad, twice
+/// the torque range + 5 N m) on the fixture's first run, over its first `horizon` seconds.
+BoundedLoopRequirement loggedBoundsOverFirstSeconds(const BenchmarkObjectiveFixture& f, double horizon) {
+  const LogSignals& log = *f.runs[0].log;
+  double angle = 0.0, torque = 0.0;
+  for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
+  for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
+  return {&log, f.runs[0].config.get(), horizon, 1.5 * angle + 0.02, 2.0 * torque + 5.0};
+}
+
 TEST(LineSearch, FindsTheMinimumABruteForceScanOfTheLineFinds) {
   // The Coulomb level of the benchmark's friction case on a 10 s log: a loss with a clear minimum
   // inside the bounds, log-scaled. The grid (13 points) brackets it, Brent's method refines it.
@@ -67,13 +77,7 @@ TEST(LineSearch, UnderAStabilityRequirementNoGridPointBeatsIt) {
   // two at a time) must agree bit for bit. Low damping diverges, so both kinds of point are on the line.
   const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
   const CandidateEffect& column = candidateNamed("steering_compliance");
-  // The logged bounds as stabilityRequirements sets them (1.5 times the steering range + 0.02 rad, twice
-  // the torque range + 5 N m), over the log's first 3 s.
-  const LogSignals& log = *f.runs[0].log;
-  double angle = 0.0, torque = 0.0;
-  for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
-  for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
-  const BoundedLoopRequirement required{&log, f.runs[0].config.get(), 3.0, 1.5 * angle + 0.02, 2.0 * torque + 5.0};
+  const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
   const EffectParameter& damping = column.params[1];
   const std::vector<double> start{4000, 0.5, column.params[2].initial};
   std::vector<std::vector<double>> found;
@@ -112,11 +116,7 @@ TEST(LineSearch, UnderAStabilityRequirementFindsTheBoundedMinimumAScanFinds) {
   // closed loop per grid point and 1 + 4 per boundary (Brent's replay minimum, the bisection).
   const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
   const CandidateEffect& column = candidateNamed("steering_compliance");
-  const LogSignals& log = *f.runs[0].log;
-  double angle = 0.0, torque = 0.0;
-  for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
-  for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
-  const BoundedLoopRequirement required{&log, f.runs[0].config.get(), 3.0, 1.5 * angle + 0.02, 2.0 * torque + 5.0};
+  const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
   const EffectParameter& damping = column.params[1];
   const std::vector<double> start{4000, 2.0, column.params[2].initial};
   CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
