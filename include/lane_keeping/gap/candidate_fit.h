@@ -69,6 +69,10 @@ std::pair<double, double> narrowedRange(const EffectParameter& p, double value);
 /// on `threads` threads.
 std::vector<double> coordinateFit(const CandidateObjective& objective, std::vector<double> theta = {}, int threads = 1);
 
+/// Levenberg-Marquardt (Ceres, forward differences) from theta, at most `iterations` steps, within the
+/// parameters' ranges (one at a bound of its range held there); theta itself when no step lowers the loss.
+std::vector<double> polish(const CandidateObjective& objective, std::vector<double> theta, int iterations);
+
 /// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt (forward
 /// differences; parameters the search left at a bound held there). Coarse to fine when `coarse_stride`
 /// > 1 (the default, 3): the search and a first polish run on every coarse_stride-th piece of the data

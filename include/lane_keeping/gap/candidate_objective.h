@@ -2,6 +2,7 @@
 /// The loss a candidate's fit minimises (diagnosis.h, step 3): the replays of the subsystems the
 /// candidate changes, run with its parameters, over the training data; optionally with the closed
 /// loop of each fitted configuration required to stay within the logged bounds (bounded_loop.h).
+#include <atomic>
 #include <map>
 #include <mutex>
 #include <set>
@@ -72,6 +73,8 @@ class CandidateObjective {
     std::lock_guard<std::mutex> lock(memo_mutex_);
     return replay_losses_.size();
   }
+  /// How many times this objective has replayed its data (evaluation(), from any caller).
+  std::size_t evaluations() const { return evaluations_.load(); }
 
   /// The same loss over other data (such as decimatedData's coarse subset of this one's), with no
   /// stability requirement and nothing remembered. `data` must outlive the result.
@@ -114,6 +117,7 @@ class CandidateObjective {
   mutable std::map<std::vector<double>, double> losses_;
   mutable std::map<std::vector<double>, double> replay_losses_;
   mutable std::map<std::pair<std::vector<double>, RequirementKey>, LoopDivergence> bounds_;
+  mutable std::atomic<std::size_t> evaluations_{0};
 };
 
 }  // namespace diagnosis

@@ -45,6 +45,7 @@ bool CandidateObjective::admissible(const std::vector<double>& theta) const {
 
 Evaluation CandidateObjective::evaluation(const std::vector<double>& theta) const {
   const bool reuse = subsystems_.count("chassis") == 0;
+  ++evaluations_;
   return evaluate(changeFor(theta), data_, subsystems_, options_, reuse ? &nominal_sigma1_ : nullptr);
 }
 

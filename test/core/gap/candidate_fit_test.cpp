@@ -163,6 +163,24 @@ TEST(LeastSquaresFit, CoarseToFineReachesTheOptimumOfAllTheData) {
   EXPECT_NEAR(std::log(coarse[0] / full[0]), 0.0, 0.05) << coarse[0] << " N m against " << full[0];
 }
 
+TEST(Polish, AStepCostsItsReplaysNotALineSearchOfJacobians) {
+  // The motor-side column on the benchmark's sensing-delay case at 1 kHz, polished again from a polished
+  // point: Levenberg-Marquardt's step there does not lower the loss enough. Under bounds Ceres searches
+  // along the projected step (Armijo); with its default cubic interpolation every trial point cost the
+  // forward-difference Jacobian too (p + 1 replays of all the data), the trials shrinking towards the
+  // start: 45 replays for one step.
+  const BenchmarkObjectiveFixture f("sensing_delay-large-sinusoid", 20.0, 1000.0, 0.6);
+  const CandidateEffect& column = candidateNamed("steering_compliance", "motor_sensor");
+  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  const std::vector<double> polished = polish(objective, coordinateFit(objective), 4);
+  const std::size_t before = objective.evaluations();
+  const std::vector<double> again = polish(objective, polished, 1);
+  // Its start and Jacobian (p + 1), a step and the Jacobian there (p + 1), at most 6 line-search trials.
+  const std::size_t p = column.params.size();
+  EXPECT_LE(objective.evaluations() - before, 2 * (p + 1) + 6);
+  EXPECT_LE(objective.loss(again), objective.loss(polished)) << "a polish returned a worse point than its start";
+}
+
 }  // namespace
 }  // namespace diagnosis
 }  // namespace lane_keeping
