@@ -311,7 +311,7 @@ class FitPhases {
   void done(const char* phase, std::size_t replays) {
     if (!on_) return;
     const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "%s (%s) %s: %.3f s, %zu replays of its data so far\n", effect_.name.c_str(), effect_.form.c_str(), phase,
+    std::fprintf(stderr, "%s %s: %.3f s, %zu replays of its data so far\n", effect_.label().c_str(), phase,
                  std::chrono::duration<double>(now - last_).count(), replays);
     last_ = now;
   }
