@@ -84,7 +84,6 @@ struct CeresResiduals {
   }
 };
 
-
 }  // namespace
 
 /// Levenberg-Marquardt (Ceres) from theta, at most `iterations` steps; theta itself when no step lowers
