@@ -75,8 +75,9 @@ std::vector<double> polish(const CandidateObjective& objective, std::vector<doub
 
 /// Unconstrained least-squares fit: coordinate search, polished with Levenberg-Marquardt (forward
 /// differences; parameters the search left at a bound held there). Coarse to fine when `coarse_stride`
-/// > 1 (the default, 3): the search and a first polish run on every coarse_stride-th piece of the data
-/// (decimatedData, pieces of the chassis horizon), one further step on all of it; else the search and
+/// > 1 (the default, 3): the search and a first polish run on every coarse_stride-th piece of the data,
+/// or every sqrt(n)-th of a log's n pieces where that is sparser (coarseFitData, pieces of the chassis
+/// horizon), one further step on all of it; else the search and
 /// the polish on all of it. A profile effect (no polish: its loss is not smooth) searches
 /// all the data.
 std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride = 1);

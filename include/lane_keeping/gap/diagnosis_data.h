@@ -72,6 +72,18 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
 /// The pieces are spread over the whole log, so the coarse data see every part of the manoeuvre.
 std::vector<Dataset> decimatedData(const std::vector<Dataset>& data, double piece, std::size_t stride);
 
+/// The pieces of `piece` seconds that decimatedData cuts `data`'s segments into (a segment's last
+/// piece may be shorter).
+std::size_t pieceCount(const std::vector<Dataset>& data, double piece);
+
+/// The coarse data of a fit (DiagnosisOptions::coarse_fit_stride): each data set decimated as above with
+/// the stride max(`min_stride`, round(sqrt(n))) for its n pieces, so a set's coarse pieces grow as the
+/// square root of its length (~sqrt(n)) and the coarse search's cost stops growing with the data while
+/// its estimate still sharpens. Sets of up to 12 pieces (24 s at the 2 s chassis horizon, every log of
+/// both benchmark families) keep the stride 3 as before; the benchmark's 60 s log (21 training pieces)
+/// takes 5 (issue 18: its coarse search was half of its diagnosis).
+std::vector<Dataset> coarseFitData(const std::vector<Dataset>& data, double piece, std::size_t min_stride);
+
 /// The excitation kinds of a log, each as its magnitude at every sample (the names of DataSplit::coverage).
 std::map<std::string, std::vector<double>> excitations(const LogSignals& log, const SimConfig& config);
 

@@ -34,7 +34,8 @@ struct DiagnosisOptions {
   /// training data, one Levenberg-Marquardt step on all of it (candidate_fit.h). At 3 (the default since
   /// 2026-11-26) both benchmark families keep every verdict, the held-out shrinks within 0.8 points,
   /// and the benchmark's 60 s log is diagnosed in 8.7-8.8 s instead of 14.0-14.9 s (docs/gap.md,
-  /// "Coarse to fine"); 1 fits on all the data throughout.
+  /// "Coarse to fine"); 1 fits on all the data throughout. The smallest stride: a log of more than 12
+  /// pieces takes the square root of its pieces (coarseFitData, diagnosis_data.h).
   std::size_t coarse_fit_stride = 3;
   int threads = 2;                  ///< candidates fitted in parallel
   bool closed_loop = true;          ///< run the closed-loop replays of "how far"

@@ -107,7 +107,7 @@ void refitBounded(const FitContext& context, const DiagnosisOptions& options, Ca
     // is closed-loop runs, see lineSearch.)
     const std::vector<Dataset> coarse =
         options.coarse_fit_stride > 1 && !fit->effect->profile
-            ? decimatedData(*context.train, options.replay.chassis_horizon, options.coarse_fit_stride)
+            ? coarseFitData(*context.train, options.replay.chassis_horizon, options.coarse_fit_stride)
             : *context.train;
     CandidateObjective search = objective.on(coarse);
     theta = holdStable(search, fit->theta, fit->unbounded_on, &fit->stability_note, &bounded, threads);

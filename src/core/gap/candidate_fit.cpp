@@ -13,6 +13,7 @@
 #include <functional>
 #include <limits>
 #include <mutex>
+#include <string>
 
 #include "lane_keeping/common/parallel_for.h"
 #include "lane_keeping/gap/diagnosis_data.h"
@@ -307,10 +308,10 @@ class FitPhases {
  public:
   explicit FitPhases(const CandidateEffect& effect)
       : effect_(effect), on_(std::getenv("LK_GAP_DEBUG") != nullptr), last_(std::chrono::steady_clock::now()) {}
-  void done(const char* phase, std::size_t replays) {
+  void done(const std::string& phase, std::size_t replays) {
     if (!on_) return;
     const auto now = std::chrono::steady_clock::now();
-    std::fprintf(stderr, "%s %s: %.3f s, %zu replays of its data so far\n", effect_.label().c_str(), phase,
+    std::fprintf(stderr, "%s %s: %.3f s, %zu replays of its data so far\n", effect_.label().c_str(), phase.c_str(),
                  std::chrono::duration<double>(now - last_).count(), replays);
     last_ = now;
   }
@@ -332,12 +333,15 @@ std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::si
   // search keeps its second round: with one, the column's fit on the small lane change stopped in
   // another, bounded optimum of its flat stiffness-damping valley (held-out shrink 87.8 % instead of
   // the 100 % its bounded refit reaches).
-  const std::vector<Dataset> coarse =
-      decimatedData(objective.data(), objective.replayOptions().chassis_horizon, coarse_stride);
+  // (At least every coarse_stride-th piece; a long log's square root of its pieces, coarseFitData.)
+  const double piece = objective.replayOptions().chassis_horizon;
+  const std::vector<Dataset> coarse = coarseFitData(objective.data(), piece, coarse_stride);
   const CandidateObjective coarse_objective = objective.on(coarse);
   FitPhases phases(objective.effect());
   const std::vector<double> searched = coordinateFit(coarse_objective);
-  phases.done("coarse search", coarse_objective.evaluations());
+  phases.done("coarse search on " + std::to_string(pieceCount(coarse, piece)) + " of " +
+                  std::to_string(pieceCount(objective.data(), piece)) + " pieces",
+              coarse_objective.evaluations());
   const std::vector<double> coarse_polished = polish(coarse_objective, searched, 4);
   phases.done("coarse polish", coarse_objective.evaluations());
   const std::vector<double> polished = polish(objective, coarse_polished, 1);

@@ -68,6 +68,27 @@ std::vector<Dataset> decimatedData(const std::vector<Dataset>& data, double piec
   return out;
 }
 
+std::size_t pieceCount(const std::vector<Dataset>& data, double piece) {
+  std::size_t pieces = 0;
+  for (const Dataset& set : data) {
+    for (const TimeSegment& s : set.segments) {
+      for (double a = s.t0; a < s.t1 - 1e-9; a += piece) ++pieces;
+    }
+  }
+  return pieces;
+}
+
+std::vector<Dataset> coarseFitData(const std::vector<Dataset>& data, double piece, std::size_t min_stride) {
+  if (!(piece > 0.0) || min_stride == 0) throw std::invalid_argument("coarseFitData: piece and stride must be positive");
+  std::vector<Dataset> out;
+  for (const Dataset& set : data) {
+    const double pieces = static_cast<double>(pieceCount({set}, piece));
+    const auto root = static_cast<std::size_t>(std::llround(std::sqrt(pieces)));
+    out.push_back(decimatedData({set}, piece, std::max(min_stride, root)).front());
+  }
+  return out;
+}
+
 std::map<std::string, std::vector<double>> excitations(const LogSignals& log, const SimConfig& config) {
   // Each kind where the log has what it is made of (a partial log has fewer).
   std::map<std::string, std::vector<double>> out;

@@ -4,6 +4,8 @@
 
 #include <cmath>
 #include <stdexcept>
+#include <utility>
+#include <vector>
 
 #include "lane_keeping/gap/diagnosis_data.h"
 
@@ -128,6 +130,38 @@ TEST(DecimatedData, KeepsEveryKthPieceOfEachSetSpreadOverTheSegments) {
   EXPECT_EQ(two[1].segments[0].t1, 1.5);
   EXPECT_THROW(decimatedData(split.train, 0.0, 3), std::invalid_argument);
   EXPECT_THROW(decimatedData(split.train, 2.0, 0), std::invalid_argument);
+}
+
+// The coarse data of a fit: every third piece of a set up to 12 pieces (every log of the benchmark
+// families, so their fits are unchanged), the square root of a longer set's pieces otherwise, so the
+// coarse search grows as sqrt(n) (issue 18), each set decimated on its own.
+TEST(CoarseFitData, StrideThreeOnShortSetsSquareRootOfTheirPiecesOnLongOnes) {
+  const DataSplit split = splitData({run(transientLog("a.csv"))}, {}, DiagnosisOptions{});
+  const Dataset& base = split.train[0];
+  auto set = [&](double seconds) { return Dataset{base.log, base.config, {{0.0, seconds}}}; };
+  const double piece = 2.0;
+  EXPECT_EQ(pieceCount({set(14.0)}, piece), 7u);
+  EXPECT_EQ(pieceCount({set(13.0)}, piece), 7u);  // a shorter last piece counts
+  EXPECT_EQ(pieceCount({set(14.0), set(42.0)}, piece), 28u);
+  // (pieces, expected stride): 7 and 12 pieces keep 3 (sqrt 2.6, 3.5); 21 take 5 (4.6); 600 take 24.
+  for (const auto& [seconds, stride] : std::vector<std::pair<double, std::size_t>>{{14.0, 3}, {24.0, 3}, {42.0, 5}, {1200.0, 24}}) {
+    const std::vector<Dataset> coarse = coarseFitData({set(seconds)}, piece, 3);
+    const std::vector<Dataset> expected = decimatedData({set(seconds)}, piece, stride);
+    ASSERT_EQ(coarse.size(), 1u);
+    ASSERT_EQ(coarse[0].segments.size(), expected[0].segments.size()) << seconds << " s";
+    for (std::size_t k = 0; k < coarse[0].segments.size(); ++k) EXPECT_EQ(coarse[0].segments[k].t0, expected[0].segments[k].t0);
+  }
+  // 20 minutes: 600 pieces, 25 of them in the coarse data (within one of sqrt(600) = 24.5).
+  EXPECT_EQ(pieceCount(coarseFitData({set(1200.0)}, piece, 3), piece), 25u);
+  // The minimum stride wins where it is larger than the root.
+  EXPECT_EQ(pieceCount(coarseFitData({set(42.0)}, piece, 7), piece), 3u);
+  // Each set on its own: a short set beside a long one keeps its own stride 3.
+  const std::vector<Dataset> both = coarseFitData({set(14.0), set(1200.0)}, piece, 3);
+  ASSERT_EQ(both.size(), 2u);
+  EXPECT_EQ(both[0].segments.size(), 3u);
+  EXPECT_EQ(both[1].segments.size(), 25u);
+  EXPECT_THROW(coarseFitData({set(14.0)}, 0.0, 3), std::invalid_argument);
+  EXPECT_THROW(coarseFitData({set(14.0)}, piece, 0), std::invalid_argument);
 }
 
 }  // namespace
