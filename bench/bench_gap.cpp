@@ -2,7 +2,8 @@
 // 1 kHz with all eleven candidates (held-out blocks, closed-loop replay included), on the threads given.
 // The logs are generated like the withheld-effect benchmark (steering friction hidden, sensor noise).
 //   lk_bench_gap [--threads N] [--duration S] [--rate HZ] [--effects a,b,...] [--case ID] [--coarse-stride K]
-// (--coarse-stride: DiagnosisOptions::coarse_fit_stride, default 3, 1 to time the fits on all the data;
+// (--coarse-stride: DiagnosisOptions::coarse_fit_stride, default 3, the smallest stride: a 60 s log's
+// 18-20 training pieces take round(sqrt(n)) = 4 (coarseFitData); 1 to time the fits on all the data;
 // --rate: one log rate instead of both; --effects: fit only these candidates, to time one of them;
 // --case: another benchmark case than steering_friction-large-lane_change, e.g. a column log whose
 // winning fit must be held to a bounded closed loop.)
@@ -39,7 +40,7 @@ int main(int argc, char** argv) {
       for (std::string name; std::getline(list, name, ',');) effects.push_back(name);
     }
   }
-  std::printf("lane_keeping gap diagnosis benchmark: %g s log of %s, %s, %d thread(s), coarse fit stride %zu\n\n",
+  std::printf("lane_keeping gap diagnosis benchmark: %g s log of %s, %s, %d thread(s), coarse fit stride at least %zu\n\n",
               duration, case_id.c_str(), effects.empty() ? "all 11 candidates" : "selected candidates", threads,
               coarse_stride);
   std::printf("%-10s %10s %14s %22s\n", "log rate", "rows", "wall time", "verdict");
