@@ -80,8 +80,8 @@ std::size_t pieceCount(const std::vector<Dataset>& data, double piece);
 /// the stride max(`min_stride`, round(sqrt(n))) for its n pieces, so a set's coarse pieces grow as the
 /// square root of its length (~sqrt(n)) and the coarse search's cost stops growing with the data while
 /// its estimate still sharpens. Sets of up to 12 pieces (24 s at the 2 s chassis horizon, every log of
-/// both benchmark families) keep the stride 3 as before; the benchmark's 60 s log (21 training pieces)
-/// takes 5 (issue 18: its coarse search was half of its diagnosis).
+/// both benchmark families) keep the stride 3 as before; lk_bench_gap's 60 s log (18-20 training
+/// pieces) takes 4, 5 pieces instead of 6-7 (issue 18: its coarse search was half of its fitting work).
 std::vector<Dataset> coarseFitData(const std::vector<Dataset>& data, double piece, std::size_t min_stride);
 
 /// The excitation kinds of a log, each as its magnitude at every sample (the names of DataSplit::coverage).
