@@ -36,6 +36,9 @@ struct ReplayOptions {
   double steering_horizon = 0.15;    ///< [s]
   double steering_step = 2e-3;       ///< longest integration step [s] (shorter for fast tires and friction,
                                      ///< and for a progressive column; a linear column is stepped exactly)
+  /// A linear column's replay steps over two samples at a time where both fit in the step, the first
+  /// from the step's dense output (steering_replay.cpp); false: every sample ends a step.
+  bool steering_midpoint_output = true;
   double chassis_horizon = 2.0;      ///< [s]
   double chassis_step = 4e-3;        ///< RK4 step [s] (reduced automatically for fast tire dynamics)
   double chassis_compare_period = 0.01;  ///< compare the chassis outputs at most at 100 Hz [s]

@@ -32,9 +32,40 @@ class Etdrk4 {
 
   /// Advances x by h. n(stage, const VectorXd& x, VectorXd& n_of_x) evaluates N (the derivative minus
   /// L x): stage 0 at t, stages 1 and 2 at t + h/2, stage 3 at t + h. The matrices are cached for the
-  /// last two step lengths (a log's sample intervals repeat to rounding).
+  /// last four step lengths (a log's sample intervals repeat to rounding).
   template <class Nonlinear>
   void step(Nonlinear&& n, double h, Eigen::VectorXd& x) {
+    advance(n, h, x, nullptr);
+  }
+
+  /// As step, and the state at t + h/2 into `mid` from the step's own stages, no further evaluation
+  /// of N: the exact solution of x' = L x + p(t) for the quadratic p through N(t, x), the two
+  /// midpoint stages' mean and N(t + h, c), which the scheme's last line integrates over the whole step
+  /// (Cox & Matthews eq. 26 is that integral at h), integrated over half of it:
+  ///   x(t + h/2) = e^{Lh/2} x + [h/2 phi1 - 3h/4 phi2 + h/2 phi3] N_x + [h/2 phi2 - h/2 phi3] (N_a + N_b)
+  ///                + [h/2 phi3 - h/4 phi2] N_c,   phi_k at L h/2
+  /// (the integral of tau^k e^{(tau - s)L} is k! tau^{k+1} phi_{k+1}(tau L)). Where L is zero it is
+  /// RK4's third-order continuous extension at theta = 1/2 (weights 5/24, 1/6, 1/6, -1/24).
+  template <class Nonlinear>
+  void stepWithMidpoint(Nonlinear&& n, double h, Eigen::VectorXd& x, Eigen::VectorXd& mid) {
+    mid.resize(x.size());
+    advance(n, h, x, &mid);
+  }
+
+  /// The matrix functions of L h (exposed for tests): e^{Lh}, phi1, phi2, phi3.
+  struct Phi {
+    Eigen::MatrixXd exp, phi1, phi2, phi3;
+  };
+  static Phi phiFunctions(const Eigen::MatrixXd& a);
+
+ private:
+  /// On the coupled states only (k x k); g1..g3 weigh the stages in the midpoint's dense output.
+  struct Matrices {
+    double h = -1.0;
+    Eigen::MatrixXd e, e_half, p_half, f1, f2, f3, g1, g2, g3;
+  };
+  template <class Nonlinear>
+  void advance(Nonlinear& n, double h, Eigen::VectorXd& x, Eigen::VectorXd* mid) {
     const Matrices& m = matricesFor(h);
     const double half = 0.5 * h;
     n(0, x, nx_);
@@ -49,8 +80,21 @@ class Etdrk4 {
     combine(m.e_half, a_, m.p_half, scratch_, c_);
     for (Eigen::Index i : plain_) c_[i] = x[i] + h * nb_[i];
     n(3, c_, nc_);
-    // The coupled states from the old x, into scratch, before x changes.
     const Eigen::Index k = static_cast<Eigen::Index>(coupled_.size());
+    if (mid != nullptr) {  // from the old x, before it changes
+      for (Eigen::Index r = 0; r < k; ++r) {
+        double sum = 0.0;
+        for (Eigen::Index j = 0; j < k; ++j) {
+          const Eigen::Index cj = coupled_[j];
+          sum += m.e_half(r, j) * x[cj] + m.g1(r, j) * nx_[cj] + m.g2(r, j) * (na_[cj] + nb_[cj]) + m.g3(r, j) * nc_[cj];
+        }
+        (*mid)[coupled_[r]] = sum;
+      }
+      for (Eigen::Index i : plain_) {
+        (*mid)[i] = x[i] + h * ((5.0 / 24.0) * nx_[i] + (1.0 / 6.0) * (na_[i] + nb_[i]) - (1.0 / 24.0) * nc_[i]);
+      }
+    }
+    // The coupled states from the old x, into scratch, before x changes.
     for (Eigen::Index r = 0; r < k; ++r) {
       double sum = 0.0;
       for (Eigen::Index j = 0; j < k; ++j) {
@@ -63,19 +107,6 @@ class Etdrk4 {
     const double sixth = h / 6.0;
     for (Eigen::Index i : plain_) x[i] += sixth * (((nx_[i] + 2.0 * na_[i]) + 2.0 * nb_[i]) + nc_[i]);
   }
-
-  /// The matrix functions of L h (exposed for tests): e^{Lh}, phi1, phi2, phi3.
-  struct Phi {
-    Eigen::MatrixXd exp, phi1, phi2, phi3;
-  };
-  static Phi phiFunctions(const Eigen::MatrixXd& a);
-
- private:
-  /// On the coupled states only (k x k).
-  struct Matrices {
-    double h = -1.0;
-    Eigen::MatrixXd e, e_half, p_half, f1, f2, f3;
-  };
   /// out = e x + p v on the coupled states (plain loops: Eigen's dynamic-size product cost more in
   /// dispatch than a 4 x 4 block's arithmetic, 8 % of a diagnosis).
   void combine(const Eigen::MatrixXd& e, const Eigen::VectorXd& x, const Eigen::MatrixXd& p, const Eigen::VectorXd& v,
@@ -88,8 +119,9 @@ class Etdrk4 {
     }
   }
   /// The step's matrices: from the cache when h equals a cached step to 1e-9 (relative), else
-  /// computed into the older of the two entries. Two, because a shooting interval starting between
-  /// samples alternates a first partial step with the log's regular one.
+  /// computed into the least recently used entry. Four, because a shooting interval starting between
+  /// samples has a first partial step, then the log's regular one, and a replay stepping over two
+  /// samples at a time a single one where an odd count remains.
   const Matrices& matricesFor(double h);
   /// phi_k of L h on the states L couples (its nonzero rows and columns; on the others phi_k = 1 / k!).
   Phi phiOfStep(double h) const;
@@ -97,8 +129,10 @@ class Etdrk4 {
   Eigen::MatrixXd l_;
   std::vector<Eigen::Index> coupled_;  ///< states with a nonzero row or column of L
   std::vector<Eigen::Index> plain_;    ///< the others
-  Matrices cache_[2];
-  int older_ = 0;
+  static constexpr int kCached = 4;
+  Matrices cache_[kCached];
+  long uses_[kCached] = {};  ///< the clock of each entry's last use (least recently used is replaced)
+  long clock_ = 0;
   Eigen::VectorXd nx_, na_, nb_, nc_, a_, b_, c_, scratch_;
 };
 

@@ -86,14 +86,17 @@ Etdrk4::Phi Etdrk4::phiOfStep(double h) const {
 }
 
 const Etdrk4::Matrices& Etdrk4::matricesFor(double h) {
-  for (int k = 0; k < 2; ++k) {
+  ++clock_;
+  int oldest = 0;
+  for (int k = 0; k < kCached; ++k) {
     if (std::fabs(h - cache_[k].h) <= 1e-9 * std::fabs(h)) {
-      older_ = 1 - k;
+      uses_[k] = clock_;
       return cache_[k];
     }
+    if (uses_[k] < uses_[oldest]) oldest = k;
   }
   if (!(h > 0.0) || !std::isfinite(h)) throw std::invalid_argument("Etdrk4: the step must be positive and finite");
-  Matrices& m = cache_[older_];
+  Matrices& m = cache_[oldest];
   const Phi half = phiOfStep(0.5 * h);
   const Phi full = phiOfStep(h);
   m.e_half = half.exp;
@@ -102,8 +105,12 @@ const Etdrk4::Matrices& Etdrk4::matricesFor(double h) {
   m.f1 = h * (full.phi1 - 3.0 * full.phi2 + 4.0 * full.phi3);
   m.f2 = (2.0 * h) * (full.phi2 - 2.0 * full.phi3);
   m.f3 = h * (4.0 * full.phi3 - full.phi2);
+  // The midpoint's dense output (stepWithMidpoint): the same quadratic in N integrated over h/2.
+  m.g1 = (0.5 * h) * half.phi1 - (0.75 * h) * half.phi2 + (0.5 * h) * half.phi3;
+  m.g2 = (0.5 * h) * (half.phi2 - half.phi3);
+  m.g3 = (0.5 * h) * half.phi3 - (0.25 * h) * half.phi2;
   m.h = h;
-  older_ = 1 - older_;
+  uses_[oldest] = clock_;
   return m;
 }
 
