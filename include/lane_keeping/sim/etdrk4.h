@@ -41,7 +41,7 @@ class Etdrk4 {
   /// As step, and the state at t + h/2 into `mid` from the step's own stages, no further evaluation
   /// of N: the exact solution of x' = L x + p(t) for the quadratic p through N(t, x), the two
   /// midpoint stages' mean and N(t + h, c), which the scheme's last line integrates over the whole step
-  /// (Cox & Matthews eq. 26 is that integral at h), integrated over half of it:
+  /// (Cox & Matthews' last line is that integral over h), integrated over half of it:
   ///   x(t + h/2) = e^{Lh/2} x + [h/2 phi1 - 3h/4 phi2 + h/2 phi3] N_x + [h/2 phi2 - h/2 phi3] (N_a + N_b)
   ///                + [h/2 phi3 - h/4 phi2] N_c,   phi_k at L h/2
   /// (the integral of tau^k e^{(tau - s)L} is k! tau^{k+1} phi_{k+1}(tau L)). Where L is zero it is

@@ -238,20 +238,26 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
     // wheel's fastest motion is the tire's and the friction's, which bound the step (on the benchmark's
     // 1 kHz lane change it stays within the 1 ms replay's own difference from the 2 ms one, ~1e-6 rad).
     // A compliant column's mode is faster than the step (a stiff one is stepped exactly, sim/etdrk4.h):
-    // at k = 1e5 N m/rad it rings at 360 Hz, and the interpolant missed it by 3e-5 rad, so there every
-    // sample ends a step. At 1 kHz this halves the rigid column's steps; where samples are h or more
-    // apart (100 Hz) every sample ends a step, as before.
-    // A linear column stepped exactly (above) takes two samples a step where both fit in h and the first
-    // sits at the step's midpoint (to 1 % of the step): the first's angle is the scheme's own dense output
-    // at h/2 (Etdrk4::stepWithMidpoint: the linear column exact, the rest from the step's four stages),
-    // carried to the sample by the midpoint's rate. At 1 kHz this halves the compliant column's steps
-    // (the motor-side column's fit was the diagnosis's longest stage on the 1 kHz logs, issue 18); the
-    // angle stays within 1e-7 rad of the sample-by-sample replay (gap tests, SteeringReplay).
+    // at k = 1e5 N m/rad it rings at 360 Hz, and the interpolant missed it by 3e-5 rad. A linear one
+    // takes two samples a step where both fit in h and the first sits at the step's midpoint (to 1 % of
+    // the step): the first's angle is the scheme's own dense output at h/2 (Etdrk4::stepWithMidpoint: the
+    // column exact, the rest from the step's four stages), carried to the sample by the midpoint's rate
+    // (on a 1 kHz column log 1.4-1.8e-6 rad from a 0.25 ms replay, the sample-by-sample replay
+    // 0.5-0.9e-6: Replay.ALinearColumnTakesTwoSamplesAStep...). Elsewhere (a progressive column, uneven
+    // stamps) every sample of a compliant column ends a step. At 1 kHz this halves the steps; where
+    // samples are h or more apart (100 Hz) every sample ends a step, as before.
     const bool interpolate = !sp.compliant();
     Eigen::VectorXd midpoint(n);
     auto simulateWithStep = [&](const Eigen::VectorXd& start, Eigen::MatrixXd& outputs, double h) {
       Eigen::VectorXd q = start;
       double t = t0;
+      // Left the model's domain from sample i on: the rest held at the (clamped) angle reached.
+      auto diverged = [&](const Eigen::VectorXd& q_end, std::size_t i) {
+        for (std::size_t k = i; k < last; ++k) {
+          outputs(k - first, 0) = std::isfinite(q_end[0]) ? std::clamp(q_end[0], -limit, limit) : limit;
+        }
+        return false;
+      };
       for (std::size_t i = first; i < last;) {
         if (exponential && options.steering_midpoint_output && i + 1 < last && times[i + 1] - t <= h * (1.0 + 1e-9)) {
           const double span = times[i + 1] - t, offset = times[i] - t - 0.5 * span;
@@ -263,8 +269,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
                 span, q, midpoint);
             const double at_sample = midpoint[0] + offset * midpoint[1];
             if (!q.allFinite() || std::fabs(q[0]) > limit || !std::isfinite(at_sample) || std::fabs(at_sample) > limit) {
-              for (std::size_t k = i; k < last; ++k) outputs(k - first, 0) = std::isfinite(q[0]) ? std::clamp(q[0], -limit, limit) : limit;
-              return false;
+              return diverged(q, i);
             }
             outputs(i - first, 0) = at_sample;
             outputs(i + 1 - first, 0) = q[0];
@@ -282,8 +287,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
           integrate(f, t, times[end], h, q, rk4);
         }
         if (!q.allFinite() || std::fabs(q[0]) > limit) {
-          for (std::size_t k = i; k < last; ++k) outputs(k - first, 0) = std::isfinite(q[0]) ? std::clamp(q[0], -limit, limit) : limit;
-          return false;
+          return diverged(q, i);
         }
         const double span = times[end] - t;
         for (std::size_t k = i; k < end; ++k) {
