@@ -83,9 +83,10 @@ std::vector<double> polish(const CandidateObjective& objective, std::vector<doub
 std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride = 1);
 
 /// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta (`objective`
-/// over `context.train`, its replays the training scores).
+/// over `context.train`, its replays the training scores). Its p + 2 replays run on `threads` threads (the
+/// scores do not depend on it).
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
-              const DiagnosisOptions& options, CandidateFit* out);
+              const DiagnosisOptions& options, CandidateFit* out, int threads = 1);
 
 /// The least-squares fit of one candidate, scored; `unbounded_on` lists the training logs whose
 /// closed loop it makes leave the logged bounds (refitBounded fits it again under them).

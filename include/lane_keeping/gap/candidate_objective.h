@@ -53,6 +53,12 @@ class CandidateObjective {
   /// first move along it), and under a requirement each visit costs a closed-loop run.
   double loss(const std::vector<double>& theta) const;
 
+  /// Whether loss(theta) is remembered (it then costs no replay and no closed-loop run).
+  bool remembersLoss(const std::vector<double>& theta) const {
+    std::lock_guard<std::mutex> lock(memo_mutex_);
+    return losses_.count(theta) > 0;
+  }
+
   /// The sum of squared residuals at theta whatever the stability requirement (+inf for an invalid
   /// configuration): loss(theta) where the closed loop stays bounded. Remembered per theta.
   double replayLoss(const std::vector<double>& theta) const;

@@ -117,7 +117,7 @@ void refitBounded(const FitContext& context, const DiagnosisOptions& options, Ca
     return;
   }
   if (bounded) fit->unbounded_on.clear();
-  scoreFit(objective, theta, context, options, fit);
+  scoreFit(objective, theta, context, options, fit, threads);
 }
 
 std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitContext& context, double gap_before,

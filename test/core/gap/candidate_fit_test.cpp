@@ -145,6 +145,63 @@ TEST(LineSearch, UnderAStabilityRequirementFindsTheBoundedMinimumAScanFinds) {
   EXPECT_LE(found, scanned * (1.0 + 1e-4)) << "search " << theta[1] << " N m s/rad, scan " << at;
 }
 
+TEST(LineSearch, UnderAStabilityRequirementTheClosedLoopsRunAheadChangeNothing) {
+  // With a thread to spare, the constrained search runs the closed loops it may ask for next beside the
+  // one it asks for now (the bisection's next midpoints if this one stays bounded, the neighbour of a
+  // diverging grid point beside Brent's replay minimum). The objective remembers each point, so the
+  // search must take one thread's path: the same point and loss, bit for bit, on the line above whose
+  // bounded minimum lies on a boundary the search bisects.
+  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
+  const CandidateEffect& column = candidateNamed("steering_compliance");
+  const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
+  const EffectParameter& damping = column.params[1];
+  const std::vector<double> start{4000, 2.0, column.params[2].initial};
+  std::vector<std::vector<double>> found;
+  std::vector<double> losses;
+  for (int threads : {1, 2}) {
+    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    objective.requireStability({required});
+    std::vector<double> theta = start;
+    losses.push_back(lineSearch(objective, theta, 1, damping.lower, damping.upper, 13, objective.loss(theta), threads));
+    found.push_back(theta);
+  }
+  EXPECT_EQ(found[0], found[1]);
+  EXPECT_EQ(losses[0], losses[1]);
+  // The result lies between grid points (on the boundary the bisection found), not on the grid.
+  const double u = std::log(found[0][1] / damping.lower) / std::log(damping.upper / damping.lower) * 12.0;
+  EXPECT_GT(std::fabs(u - std::round(u)), 1e-6) << "the search stopped on a grid point: no bisection compared";
+}
+
+TEST(ScoreFit, OnTwoThreadsScoresAsOnOne) {
+  // A bounded refit scores its result with the threads the other fits left idle: the training and
+  // held-out replays and the uncertainty's p forward steps side by side. The scores and sigmas must be
+  // those of one thread, bit for bit.
+  const BenchmarkObjectiveFixture f("steering_friction-large-lane_change", 10.0, 100.0, 0.6);
+  const CandidateEffect& friction = candidateNamed("steering_friction");
+  FitContext context;
+  context.nominal = &f.config;
+  context.train = &f.data;
+  context.held = &f.data;
+  context.nominal_train = &f.nominal;
+  context.nominal_held = &f.nominal;
+  context.available = f.available;
+  const std::vector<double> theta{2.0, 0.5};
+  std::vector<CandidateFit> fits(2);
+  for (int threads : {1, 2}) {
+    CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    fits[threads - 1].effect = &friction;
+    scoreFit(objective, theta, context, DiagnosisOptions{}, &fits[threads - 1], threads);
+  }
+  ASSERT_TRUE(fits[0].ok && fits[1].ok);
+  ASSERT_EQ(fits[0].sigma.size(), 2u);
+  for (double s : fits[0].sigma) EXPECT_TRUE(std::isfinite(s) && s > 0.0) << "no uncertainty: its replays not compared";
+  EXPECT_EQ(fits[0].sigma, fits[1].sigma);
+  EXPECT_EQ(fits[0].train_after, fits[1].train_after);
+  EXPECT_EQ(fits[0].heldout_after, fits[1].heldout_after);
+  EXPECT_EQ(fits[0].evidence, fits[1].evidence);
+  EXPECT_LT(fits[0].train_after, fits[0].train_before) << "the point fits no better than the nominal: a weak check";
+}
+
 TEST(LeastSquaresFit, CoarseToFineReachesTheOptimumOfAllTheData) {
   // A 20 s lane change with LuGre friction in the column (the benchmark's case), at 100 Hz; the
   // candidate's Coulomb + viscous friction fits it without a true value, so the reference is the fit
