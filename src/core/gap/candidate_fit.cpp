@@ -417,9 +417,9 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
   // The replays the scores need are independent of one another: the training data at theta (the
   // training scores, and the residuals the uncertainty needs), the held-out data at theta, and the
   // training data at each parameter's forward step. Side by side on `threads` (each in its place, so the
-  // scores are the same whatever the threads): a bounded refit, which runs alone after the other fits,
-  // spent 0.6 of its 2.5 s on these p + 2 replays one after the other on the benchmark's small column
-  // lane change.
+  // scores are the same whatever the threads), for a bounded refit, which runs alone after the other
+  // fits. (Its p + 2 replays are a small part of it: 0.06-0.07 s of the small column lane change's ~2 s
+  // refit one after the other, 0.04-0.05 s side by side; more on a longer log.)
   const std::set<std::string>& changed = objective.subsystems();
   const bool reuse = changed.count("chassis") == 0;
   const std::size_t p = theta.size();
