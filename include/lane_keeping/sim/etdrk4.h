@@ -80,32 +80,31 @@ class Etdrk4 {
     combine(m.e_half, a_, m.p_half, scratch_, c_);
     for (Eigen::Index i : plain_) c_[i] = x[i] + h * nb_[i];
     n(3, c_, nc_);
-    const Eigen::Index k = static_cast<Eigen::Index>(coupled_.size());
     if (mid != nullptr) {  // from the old x, before it changes
-      for (Eigen::Index r = 0; r < k; ++r) {
-        double sum = 0.0;
-        for (Eigen::Index j = 0; j < k; ++j) {
-          const Eigen::Index cj = coupled_[j];
-          sum += m.e_half(r, j) * x[cj] + m.g1(r, j) * nx_[cj] + m.g2(r, j) * (na_[cj] + nb_[cj]) + m.g3(r, j) * nc_[cj];
-        }
-        (*mid)[coupled_[r]] = sum;
-      }
+      weighStages(m.e_half, m.g1, m.g2, m.g3, x, *mid);
       for (Eigen::Index i : plain_) {
         (*mid)[i] = x[i] + h * ((5.0 / 24.0) * nx_[i] + (1.0 / 6.0) * (na_[i] + nb_[i]) - (1.0 / 24.0) * nc_[i]);
       }
     }
     // The coupled states from the old x, into scratch, before x changes.
+    weighStages(m.e, m.f1, m.f2, m.f3, x, scratch_);
+    for (Eigen::Index i : coupled_) x[i] = scratch_[i];
+    const double sixth = h / 6.0;
+    for (Eigen::Index i : plain_) x[i] += sixth * (((nx_[i] + 2.0 * na_[i]) + 2.0 * nb_[i]) + nc_[i]);
+  }
+  /// out = e x + w1 N_x + w2 (N_a + N_b) + w3 N_c on the coupled states: the step's end (e^{Lh}, f1..f3)
+  /// or its midpoint (e^{Lh/2}, g1..g3) from the four stages.
+  void weighStages(const Eigen::MatrixXd& e, const Eigen::MatrixXd& w1, const Eigen::MatrixXd& w2,
+                   const Eigen::MatrixXd& w3, const Eigen::VectorXd& x, Eigen::VectorXd& out) const {
+    const Eigen::Index k = static_cast<Eigen::Index>(coupled_.size());
     for (Eigen::Index r = 0; r < k; ++r) {
       double sum = 0.0;
       for (Eigen::Index j = 0; j < k; ++j) {
         const Eigen::Index cj = coupled_[j];
-        sum += m.e(r, j) * x[cj] + m.f1(r, j) * nx_[cj] + m.f2(r, j) * (na_[cj] + nb_[cj]) + m.f3(r, j) * nc_[cj];
+        sum += e(r, j) * x[cj] + w1(r, j) * nx_[cj] + w2(r, j) * (na_[cj] + nb_[cj]) + w3(r, j) * nc_[cj];
       }
-      scratch_[coupled_[r]] = sum;
+      out[coupled_[r]] = sum;
     }
-    for (Eigen::Index i : coupled_) x[i] = scratch_[i];
-    const double sixth = h / 6.0;
-    for (Eigen::Index i : plain_) x[i] += sixth * (((nx_[i] + 2.0 * na_[i]) + 2.0 * nb_[i]) + nc_[i]);
   }
   /// out = e x + p v on the coupled states (plain loops: Eigen's dynamic-size product cost more in
   /// dispatch than a 4 x 4 block's arithmetic, 8 % of a diagnosis).

@@ -5,6 +5,8 @@
 
 #include <cmath>
 #include <limits>
+#include <utility>
+#include <vector>
 
 #include "benchmark_objective_fixture.h"
 #include "lane_keeping/gap/candidate_fit.h"
@@ -21,6 +23,24 @@ BoundedLoopRequirement loggedBoundsOverFirstSeconds(const BenchmarkObjectiveFixt
   for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
   for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
   return {&log, f.runs[0].config.get(), horizon, 1.5 * angle + 0.02, 2.0 * torque + 5.0};
+}
+
+/// The column's damping line searched from `start` under `required` (as the bounded refit does), on one
+/// and on two threads, each on a fresh objective (nothing remembered between): the points and losses found.
+std::pair<std::vector<std::vector<double>>, std::vector<double>> dampingSearchesOnOneAndTwoThreads(
+    const BenchmarkObjectiveFixture& f, const BoundedLoopRequirement& required, const std::vector<double>& start) {
+  const CandidateEffect& column = candidateNamed("steering_compliance");
+  const EffectParameter& damping = column.params[1];
+  std::vector<std::vector<double>> found;
+  std::vector<double> losses;
+  for (int threads : {1, 2}) {
+    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    objective.requireStability({required});
+    std::vector<double> theta = start;
+    losses.push_back(lineSearch(objective, theta, 1, damping.lower, damping.upper, 13, objective.loss(theta), threads));
+    found.push_back(theta);
+  }
+  return {found, losses};
 }
 
 TEST(LineSearch, FindsTheMinimumABruteForceScanOfTheLineFinds) {
@@ -80,15 +100,7 @@ TEST(LineSearch, UnderAStabilityRequirementNoGridPointBeatsIt) {
   const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
   const EffectParameter& damping = column.params[1];
   const std::vector<double> start{4000, 0.5, column.params[2].initial};
-  std::vector<std::vector<double>> found;
-  std::vector<double> losses;
-  for (int threads : {1, 2}) {
-    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
-    objective.requireStability({required});
-    std::vector<double> theta = start;
-    losses.push_back(lineSearch(objective, theta, 1, damping.lower, damping.upper, 13, objective.loss(theta), threads));
-    found.push_back(theta);
-  }
+  const auto [found, losses] = dampingSearchesOnOneAndTwoThreads(f, required, start);
   EXPECT_EQ(found[0], found[1]);
   EXPECT_EQ(losses[0], losses[1]);
   CandidateObjective fresh(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
@@ -156,15 +168,7 @@ TEST(LineSearch, UnderAStabilityRequirementTheClosedLoopsRunAheadChangeNothing) 
   const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
   const EffectParameter& damping = column.params[1];
   const std::vector<double> start{4000, 2.0, column.params[2].initial};
-  std::vector<std::vector<double>> found;
-  std::vector<double> losses;
-  for (int threads : {1, 2}) {
-    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
-    objective.requireStability({required});
-    std::vector<double> theta = start;
-    losses.push_back(lineSearch(objective, theta, 1, damping.lower, damping.upper, 13, objective.loss(theta), threads));
-    found.push_back(theta);
-  }
+  const auto [found, losses] = dampingSearchesOnOneAndTwoThreads(f, required, start);
   EXPECT_EQ(found[0], found[1]);
   EXPECT_EQ(losses[0], losses[1]);
   // The result lies between grid points (on the boundary the bisection found), not on the grid.
