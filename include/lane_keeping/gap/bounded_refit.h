@@ -35,6 +35,15 @@ void refitBounded(const FitContext& context, const DiagnosisOptions& options, Ca
 /// min_shrink needed), or that does not change the subsystem carrying the gap (`where_subsystem`), or a
 /// gap the detection test does not confirm (`detected` false), keeps its unconstrained fit marked unbounded (a note says why),
 /// and cannot be the verdict. Returns the wall time of each refit, named for the report.
+/// The held-out gap a refit must beat to become the verdict: the least of the bounded, unpinned fits
+/// with enough evidence that change `where_subsystem`, and at most (1 - min_shrink) of gap_before.
+double refitBar(const std::vector<CandidateFit>& fits, double gap_before, const std::string& where_subsystem,
+                const DiagnosisOptions& options);
+
+/// Appends to `fit`'s stability note why it is not fitted again under the logged bounds (its held-out
+/// gap does not beat `bar`).
+void noteNotRefitted(double bar, CandidateFit* fit);
+
 std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitContext& context, double gap_before,
                                                                    bool detected, const std::string& where_subsystem,
                                                                    const DiagnosisOptions& options,

@@ -28,6 +28,10 @@ struct FitContext {
   /// The logs carry what the whole loop needs (the tracker's inputs and output): a fit's closed loop can
   /// then be checked against them (bounded_loop.h).
   bool closed_loop_checks = true;
+  /// The subsystem carrying the gap: a fit that changes it and removes at least min_shrink of the gap has
+  /// its closed loop checked as it is fitted (closed_loop_checks.h); the others' checks wait until the
+  /// verdict needs them.
+  std::string where_subsystem;
 };
 
 struct CandidateFit {
@@ -40,6 +44,7 @@ struct CandidateFit {
   /// Logs on which the fit's closed loop leaves the bounds (empty: it stays bounded, also after a
   /// bounded refit that succeeded).
   std::vector<BoundedLoopRequirement> unbounded_on;
+  bool loop_checked = false;  ///< the closed loop was checked (unbounded_on is known; closed_loop_checks.h)
   SimConfig corrected;  ///< the shared nominal configuration with the fitted effect (the report's overlay)
   ConfigChange change;  ///< the fitted effect, as a change of each run's own configuration
   double train_before = 0.0, train_after = 0.0;
@@ -88,8 +93,9 @@ std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::si
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
               const DiagnosisOptions& options, CandidateFit* out, int threads = 1);
 
-/// The least-squares fit of one candidate, scored; `unbounded_on` lists the training logs whose
-/// closed loop it makes leave the logged bounds (refitBounded fits it again under them).
+/// The least-squares fit of one candidate, scored; if checkedAsFitted (closed_loop_checks.h),
+/// `unbounded_on` lists the training logs whose closed loop it makes leave the logged bounds
+/// (refitBounded fits it again under them).
 CandidateFit fitCandidate(const CandidateEffect& effect, const FitContext& context, const DiagnosisOptions& options);
 
 }  // namespace diagnosis

@@ -62,6 +62,10 @@ struct RankedEffect {
   /// False when the fitted effect makes the closed loop of a training log leave the logged bounds
   /// (the log contradicts it): such a candidate cannot be the verdict and ranks last.
   bool closed_loop_bounded = true;
+  /// False when the fitted closed loop was not checked: its boundedness could not change the verdict
+  /// (closed_loop_checks.h), or the logs cannot drive a closed loop. closed_loop_bounded is then true
+  /// (nothing contradicts the fit).
+  bool closed_loop_checked = true;
 };
 
 /// A candidate that explains part of the gap and leaves structure beyond the noise (the verdict is then

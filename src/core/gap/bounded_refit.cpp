@@ -120,6 +120,26 @@ void refitBounded(const FitContext& context, const DiagnosisOptions& options, Ca
   scoreFit(objective, theta, context, options, fit, threads);
 }
 
+double refitBar(const std::vector<CandidateFit>& fits, double gap_before, const std::string& where_subsystem,
+                const DiagnosisOptions& options) {
+  double bar = gap_before * (1.0 - options.min_shrink);
+  for (const auto& fit : fits) {
+    // (A fit not checked removes less than min_shrink of the gap, closed_loop_checks.h: above the bar.)
+    if (fit.ok && fit.unbounded_on.empty() && !fit.at_bound && effectChangesSubsystem(fit.effect->name, where_subsystem) &&
+        fit.evidence >= options.min_evidence_per_parameter * static_cast<double>(fit.theta.size())) {
+      bar = std::min(bar, fit.heldout_after);
+    }
+  }
+  return bar;
+}
+
+void noteNotRefitted(double bar, CandidateFit* fit) {
+  char numbers[96];
+  std::snprintf(numbers, sizeof numbers, "held-out gap %.4g against %.4g to beat", fit->heldout_after, bar);
+  fit->stability_note +=
+      std::string("; not fitted again under the logged bounds: it could not become the verdict (") + numbers + ")";
+}
+
 std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitContext& context, double gap_before,
                                                                    bool detected, const std::string& where_subsystem,
                                                                    const DiagnosisOptions& options,
@@ -127,13 +147,7 @@ std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitCont
   using Clock = std::chrono::steady_clock;
   std::vector<CandidateFit>& fits = *fits_out;
   auto changesWhere = [&](const std::string& effect) { return effectChangesSubsystem(effect, where_subsystem); };
-  double bar = gap_before * (1.0 - options.min_shrink);
-  for (const auto& fit : fits) {
-    if (fit.ok && fit.unbounded_on.empty() && !fit.at_bound && changesWhere(fit.effect->name) &&
-        fit.evidence >= options.min_evidence_per_parameter * static_cast<double>(fit.theta.size())) {
-      bar = std::min(bar, fit.heldout_after);
-    }
-  }
+  const double bar = refitBar(fits, gap_before, where_subsystem, options);
   std::vector<std::size_t> refit;
   for (std::size_t i = 0; i < fits.size(); ++i) {
     const CandidateFit& fit = fits[i];
@@ -141,10 +155,7 @@ std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitCont
     if (detected && changesWhere(fit.effect->name) && fit.heldout_after < bar) {
       refit.push_back(i);
     } else {
-      char numbers[96];
-      std::snprintf(numbers, sizeof numbers, "held-out gap %.4g against %.4g to beat", fit.heldout_after, bar);
-      fits[i].stability_note +=
-          std::string("; not fitted again under the logged bounds: it could not become the verdict (") + numbers + ")";
+      noteNotRefitted(bar, &fits[i]);
     }
   }
   std::vector<double> refit_seconds(refit.size(), 0.0);

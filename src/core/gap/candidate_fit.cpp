@@ -17,6 +17,7 @@
 #include <string>
 
 #include "lane_keeping/common/parallel_for.h"
+#include "lane_keeping/gap/closed_loop_checks.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 
 namespace lane_keeping {
@@ -494,17 +495,24 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const FitContext& conte
   FitPhases phases(effect);
   try {
     theta = leastSquaresFit(objective, options.coarse_fit_stride);
-    phases.restart();
-    if (context.closed_loop_checks) {
-      fit.unbounded_on = stabilityRequirements(objective, theta, *context.train, &fit.stability_note);
-    }
-    phases.done("closed-loop checks", objective.evaluations());
   } catch (const std::exception& e) {
     fit.note = std::string("fit failed: ") + e.what();
     return fit;
   }
+  phases.restart();
   scoreFit(objective, theta, context, options, &fit);
   phases.done("scores", objective.evaluations());
+  // Scored first: whether the verdict reads this fit's closed loop depends on its held-out gap.
+  if (context.closed_loop_checks && checkedAsFitted(fit, context.where_subsystem, options.min_shrink)) {
+    try {
+      checkClosedLoop(objective, context, &fit);
+    } catch (const std::exception& e) {
+      fit.ok = false;
+      fit.note = std::string("fit failed: ") + e.what();
+      return fit;
+    }
+    phases.done("closed-loop checks", objective.evaluations());
+  }
   return fit;
 }
 

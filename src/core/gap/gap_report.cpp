@@ -12,7 +12,7 @@
 //                  "regimes": [{"variable", "lo", "hi", "share", "time_share"}] },
 //     "ranking": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {"key": "value"},
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
-//                  "shrink", "score", "closed_loop_bounded"}],
+//                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked"}],
 //     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..],
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
 //                  (only when a candidate explains part of the gap) },
@@ -94,6 +94,7 @@ OrderedJson toJson(const RankedEffect& r) {
   out["shrink"] = number(r.shrink);
   out["score"] = number(r.score);
   out["closed_loop_bounded"] = r.closed_loop_bounded;
+  out["closed_loop_checked"] = r.closed_loop_checked;
   return out;
 }
 
@@ -406,6 +407,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "shrink", &s.shrink, true);
     r.get(e, p, "score", &s.score);
     r.get(e, p, "closed_loop_bounded", &s.closed_loop_bounded);
+    r.get(e, p, "closed_loop_checked", &s.closed_loop_checked);  // absent in older reports: read as checked
     rep.ranking.push_back(s);
   });
 

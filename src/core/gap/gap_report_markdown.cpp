@@ -174,7 +174,17 @@ void writeRanking(std::ostream& out, const GapReport& r) {
         << percent(e.shrink) << " | " << num(e.score, "%.3g") << " |\n";
   }
   out << "\nshrink = 1 − gap after / gap before, on held-out data. \"closed loop unbounded\": the fitted effect "
-         "makes the closed loop of a training log leave the logged bounds, so it cannot be the cause.\n\n";
+         "makes the closed loop of a training log leave the logged bounds, so it cannot be the cause.";
+  std::string unchecked;
+  for (const RankedEffect& e : r.ranking) {
+    if (!e.closed_loop_checked) unchecked += (unchecked.empty() ? "" : ", ") + e.effect;
+  }
+  if (!unchecked.empty()) {
+    out << " Closed loops not checked (their boundedness could not change the verdict, or the logs cannot drive "
+           "one): "
+        << cell(unchecked) << ".";
+  }
+  out << "\n\n";
 }
 
 void writeWhere(std::ostream& out, const GapReport& r) {

@@ -70,7 +70,14 @@ GapReport sampleReport() {
   b.shrink = 1.0 - 0.2 / 0.33;
   b.score = 30;
   b.closed_loop_bounded = false;
-  r.ranking = {a, b};
+  RankedEffect c;  // its closed loop not checked: it could not change the verdict (closed_loop_checks.h)
+  c.effect = "road_friction";
+  c.params = {{"scale", 0.9}};
+  c.heldout_gap_before = 0.33;
+  c.heldout_gap_after = 0.32;
+  c.shrink = 1.0 - 0.32 / 0.33;
+  c.closed_loop_checked = false;
+  r.ranking = {a, c, b};
   r.verdict.effect = "tire_lag";
   r.verdict.confidence = 0.91;
   r.verdict.gap_before = 0.33;
@@ -141,6 +148,7 @@ void expectSame(const GapReport& a, const GapReport& b) {
     expectSameDouble(x.shrink, y.shrink, "shrink");
     expectSameDouble(x.score, y.score, "score");
     EXPECT_EQ(x.closed_loop_bounded, y.closed_loop_bounded) << x.effect;
+    EXPECT_EQ(x.closed_loop_checked, y.closed_loop_checked) << x.effect;
   }
   EXPECT_EQ(a.verdict.effect, b.verdict.effect);
   expectSameDouble(a.verdict.confidence, b.verdict.confidence, "confidence");
@@ -200,7 +208,7 @@ TEST(GapReportJson, ContainsTheDesignSection5Keys) {
     for (const char* key : {"f0", "f1", "share"}) EXPECT_TRUE(b.at(key).is_number()) << key;
   // ranking
   ASSERT_TRUE(j.at("ranking").is_array());
-  ASSERT_EQ(j.at("ranking").size(), 2u);
+  ASSERT_EQ(j.at("ranking").size(), 3u);
   for (const auto& e : j.at("ranking")) {
     EXPECT_TRUE(e.at("effect").is_string());
     EXPECT_TRUE(e.at("params").is_object());
@@ -231,7 +239,7 @@ TEST(GapReportJson, NonFiniteNumbersBecomeNull) {
   report.verdict.effect = "unexplained";
   report.verdict.shrink = nan;
   report.verdict.gap_after = inf;
-  report.ranking[1].heldout_gap_after = -inf;
+  report.ranking[2].heldout_gap_after = -inf;
   report.ranking[0].params["relaxation_length"] = nan;
   report.where.subsystems[2].nrmse = nan;
   report.how_far.before = 0.0;  // how_far.shrink undefined
@@ -242,14 +250,14 @@ TEST(GapReportJson, NonFiniteNumbersBecomeNull) {
   const Json j = Json::parse(text);  // throws if invalid
   EXPECT_TRUE(j.at("verdict").at("shrink").is_null());
   EXPECT_TRUE(j.at("verdict").at("gap_after").is_null());
-  EXPECT_TRUE(j.at("ranking").at(1).at("heldout_gap_after").is_null());
+  EXPECT_TRUE(j.at("ranking").at(2).at("heldout_gap_after").is_null());
   EXPECT_TRUE(j.at("ranking").at(0).at("params").at("relaxation_length").is_null());
   EXPECT_TRUE(j.at("where").at("subsystems").at(2).at("nrmse").is_null());
   EXPECT_TRUE(j.at("how_far").at("shrink").is_null());
   const GapReport back = readGapReportJson(path);
   EXPECT_TRUE(std::isnan(back.verdict.shrink));
   EXPECT_TRUE(std::isnan(back.verdict.gap_after));  // +-Inf come back as NaN (documented)
-  EXPECT_TRUE(std::isnan(back.ranking[1].heldout_gap_after));
+  EXPECT_TRUE(std::isnan(back.ranking[2].heldout_gap_after));
   EXPECT_TRUE(std::isnan(back.ranking[0].params.at("relaxation_length")));
   EXPECT_EQ(back.verdict.effect, "unexplained");
 }
@@ -301,6 +309,14 @@ TEST(GapReportJson, ErrorsNameFileAndKey) {
   const std::string bad_type = dir + "/bad_type.json";
   std::ofstream(bad_type) << j.dump();
   EXPECT_TRUE(has(readError(bad_type), "$.ranking[1].shrink: expected a number")) << readError(bad_type);
+
+  // A report written before the checks were lazy has no closed_loop_checked: every fit was checked.
+  j = Json::parse(readText(dir + "/ok.json"));
+  ASSERT_EQ(j["ranking"][1]["closed_loop_checked"], false);
+  j["ranking"][1].erase("closed_loop_checked");
+  const std::string older = dir + "/older.json";
+  std::ofstream(older) << j.dump();
+  EXPECT_TRUE(readGapReportJson(older).ranking[1].closed_loop_checked);
 }
 
 TEST(GapReportMarkdown, MentionsVerdictOverlayEveryRankedEffectAndExistingPlots) {
@@ -323,6 +339,9 @@ TEST(GapReportMarkdown, MentionsVerdictOverlayEveryRankedEffectAndExistingPlots)
   EXPECT_TRUE(has(md, "Closed-loop replay gap: 0.4 → 0.06 (shrink 85.0 %)")) << md;
   EXPECT_TRUE(has(md, "](residuals.png)")) << md;
   EXPECT_FALSE(has(md, "](overlay.png)")) << md;
+  EXPECT_TRUE(has(md, "sensing_delay (closed loop unbounded)")) << md;
+  EXPECT_TRUE(has(md, "Closed loops not checked (their boundedness could not change the verdict, or the logs cannot "
+                      "drive one): road_friction.")) << md;
 }
 
 TEST(GapReportMarkdown, UnexplainedVerdictAndNonFiniteNumbers) {
