@@ -68,6 +68,9 @@ int main(int argc, char** argv) {
     for (const auto& [stage, seconds] : report.wall_seconds) std::printf(" %s %.1f s;", stage.c_str(), seconds);
     std::printf("\n");
     std::printf("           reason: %s\n", report.verdict.reason.c_str());
+    std::size_t checked = 0;  // closed loops run: the rest could not change the verdict (closed_loop_checks.h)
+    for (const auto& r : report.ranking) checked += r.closed_loop_checked ? 1 : 0;
+    std::printf("           closed loops checked: %zu of the %zu ranked effects\n", checked, report.ranking.size());
     for (const auto& note : report.notes) std::printf("           note: %s\n", note.c_str());
     std::fflush(stdout);
   }

@@ -32,6 +32,7 @@ struct FitContext {
   /// its closed loop checked as it is fitted (closed_loop_checks.h); the others' checks wait until the
   /// verdict needs them.
   std::string where_subsystem;
+  NominalBounds* nominal_bounds = nullptr;  ///< the nominal's closed loops, shared by the fits' checks
 };
 
 struct CandidateFit {

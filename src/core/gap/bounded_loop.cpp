@@ -23,8 +23,21 @@ LoopDivergence boundsCheck(const ConfigChange& change, const BoundedLoopRequirem
   return closedLoopDivergence(config, *r.log, kNaN, r.horizon, r.max_torque);
 }
 
+bool NominalBounds::leaves(const BoundedLoopRequirement& r) {
+  Entry* entry = nullptr;
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    auto& slot = entries_[Key{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque}];
+    if (!slot) slot = std::make_unique<Entry>();
+    entry = slot.get();
+  }
+  std::call_once(entry->once, [&] { entry->leaves = boundsCheck(nullptr, r).diverged; });
+  return entry->leaves;
+}
+
 std::vector<BoundedLoopRequirement> stabilityRequirements(const CandidateObjective& objective, const std::vector<double>& theta,
-                                                          const std::vector<Dataset>& train, std::string* note) {
+                                                          const std::vector<Dataset>& train, std::string* note,
+                                                          NominalBounds* nominal) {
   std::vector<const Dataset*> runs;  // each run once (a log split into blocks appears in one data set)
   for (const Dataset& d : train) {
     if (std::none_of(runs.begin(), runs.end(), [&](const Dataset* r) { return r->log == d.log; })) runs.push_back(&d);
@@ -38,7 +51,7 @@ std::vector<BoundedLoopRequirement> stabilityRequirements(const CandidateObjecti
     for (double torque : log->samples(LogSignals::kTorque)) logged_torque = std::max(logged_torque, std::fabs(torque));
     const BoundedLoopRequirement required{log, run->config.get(), span, 1.5 * logged_angle + 0.02, 2.0 * logged_torque + 5.0};
     const LoopDivergence d = objective.bounds(theta, required);
-    if (!d.diverged || boundsCheck(nullptr, required).diverged) continue;
+    if (!d.diverged || (nominal ? nominal->leaves(required) : boundsCheck(nullptr, required).diverged)) continue;
     requirements.push_back(required);
     if (!note->empty()) continue;
     std::ostringstream os;

@@ -43,7 +43,8 @@ std::vector<std::size_t> checkUntilTopTwoKnown(const std::vector<double>& heldou
 }
 
 void checkClosedLoop(const CandidateObjective& objective, const FitContext& context, CandidateFit* fit) {
-  fit->unbounded_on = stabilityRequirements(objective, fit->theta, *context.train, &fit->stability_note);
+  fit->unbounded_on =
+      stabilityRequirements(objective, fit->theta, *context.train, &fit->stability_note, context.nominal_bounds);
   fit->loop_checked = true;
 }
 

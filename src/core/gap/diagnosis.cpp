@@ -145,6 +145,8 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   // The closed loop reproduces a logged run only if the log holds the tracker's inputs and output.
   fit_context.closed_loop_checks = all.count("tracker") > 0;
   fit_context.where_subsystem = report.where.subsystem;
+  NominalBounds nominal_bounds;
+  fit_context.nominal_bounds = &nominal_bounds;
   if (!fit_context.closed_loop_checks) {
     report.notes.push_back("the fitted effects' closed loops are not checked against the logs (the logs do not hold "
                            "the tracker's inputs and output)");

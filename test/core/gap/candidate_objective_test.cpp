@@ -6,8 +6,10 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "benchmark_objective_fixture.h"
+#include "lane_keeping/gap/bounded_loop.h"
 #include "lane_keeping/gap/candidate_objective.h"
 
 namespace lane_keeping {
@@ -64,6 +66,46 @@ TEST(CandidateObjective, ARememberedLossIsTheLossAndARequirementIsPartOfIt) {
 
   objective.requireStability({});
   EXPECT_EQ(objective.loss(unbounded), open_loop);
+}
+
+TEST(NominalBounds, RemembersTheNominalsLoopPerRequirementAndAnswersAsTheCheckDoes) {
+  const Fixture f;
+  BoundedLoopRequirement logged = f.requirement();
+  BoundedLoopRequirement tight = logged;
+  tight.max_steering_angle = 1e-4;  // the nominal's own loop leaves this
+  const bool logged_leaves = boundsCheck(nullptr, logged).diverged;
+  const bool tight_leaves = boundsCheck(nullptr, tight).diverged;
+  ASSERT_FALSE(logged_leaves);
+  ASSERT_TRUE(tight_leaves);
+  NominalBounds nominal;
+  // Asked from two threads at once, each requirement twice: one loop each, the same answers.
+  bool answers[2][4];
+  std::thread other([&] {
+    answers[1][0] = nominal.leaves(logged), answers[1][1] = nominal.leaves(tight);
+    answers[1][2] = nominal.leaves(tight), answers[1][3] = nominal.leaves(logged);
+  });
+  answers[0][0] = nominal.leaves(tight), answers[0][1] = nominal.leaves(logged);
+  answers[0][2] = nominal.leaves(logged), answers[0][3] = nominal.leaves(tight);
+  other.join();
+  for (int t = 0; t < 2; ++t) {
+    EXPECT_EQ(answers[t][0], t == 0 ? tight_leaves : logged_leaves);
+    EXPECT_EQ(answers[t][1], t == 0 ? logged_leaves : tight_leaves);
+    EXPECT_EQ(answers[t][2], t == 0 ? logged_leaves : tight_leaves);
+    EXPECT_EQ(answers[t][3], t == 0 ? tight_leaves : logged_leaves);
+  }
+  // stabilityRequirements gives the same requirements and note with it as without it.
+  const CandidateEffect& column = candidateNamed("steering_compliance", "wheel_sensor");
+  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  const std::vector<double> unbounded{164265.0, 11.16, 0.0458};
+  std::string note_without, note_with;
+  const auto without = stabilityRequirements(objective, unbounded, f.data, &note_without);
+  const auto with = stabilityRequirements(objective, unbounded, f.data, &note_with, &nominal);
+  ASSERT_EQ(without.size(), 1u);
+  ASSERT_EQ(with.size(), 1u);
+  EXPECT_EQ(with[0].log, without[0].log);
+  EXPECT_EQ(with[0].max_steering_angle, without[0].max_steering_angle);
+  EXPECT_EQ(note_with, note_without);
+  EXPECT_FALSE(note_with.empty());
 }
 
 }  // namespace
