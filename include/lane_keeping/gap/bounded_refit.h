@@ -27,14 +27,6 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
 /// on the logs in fit->unbounded_on, and scores it again (holdStable's grids on `threads` threads).
 void refitBounded(const FitContext& context, const DiagnosisOptions& options, CandidateFit* fit, int threads = 1);
 
-/// Bounded refits where they could change the verdict. A least-squares fit whose closed loop leaves the
-/// logged bounds is contradicted by the logs; fitting it again under those bounds costs a closed-loop run
-/// per point visited (40-60 s on a 60 s log). It is worth that only if the refit could become the
-/// verdict: the refit fits the training data no better than the unconstrained fit, so a candidate whose
-/// unconstrained held-out gap already loses to the best qualifying bounded candidate (or misses the
-/// min_shrink needed), or that does not change the subsystem carrying the gap (`where_subsystem`), or a
-/// gap the detection test does not confirm (`detected` false), keeps its unconstrained fit marked unbounded (a note says why),
-/// and cannot be the verdict. Returns the wall time of each refit, named for the report.
 /// The held-out gap a refit must beat to become the verdict: the least of the bounded, unpinned fits
 /// with enough evidence that change `where_subsystem`, and at most (1 - min_shrink) of gap_before.
 double refitBar(const std::vector<CandidateFit>& fits, double gap_before, const std::string& where_subsystem,
@@ -44,6 +36,14 @@ double refitBar(const std::vector<CandidateFit>& fits, double gap_before, const 
 /// gap does not beat `bar`).
 void noteNotRefitted(double bar, CandidateFit* fit);
 
+/// Bounded refits where they could change the verdict. A least-squares fit whose closed loop leaves the
+/// logged bounds is contradicted by the logs; fitting it again under those bounds costs a closed-loop run
+/// per point visited (40-60 s on a 60 s log). It is worth that only if the refit could become the
+/// verdict: the refit fits the training data no better than the unconstrained fit, so a candidate whose
+/// unconstrained held-out gap already loses to the best qualifying bounded candidate (or misses the
+/// min_shrink needed), or that does not change the subsystem carrying the gap (`where_subsystem`), or a
+/// gap the detection test does not confirm (`detected` false), keeps its unconstrained fit marked unbounded (a note says why),
+/// and cannot be the verdict. Returns the wall time of each refit, named for the report.
 std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitContext& context, double gap_before,
                                                                    bool detected, const std::string& where_subsystem,
                                                                    const DiagnosisOptions& options,

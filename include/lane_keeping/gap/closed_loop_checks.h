@@ -52,9 +52,10 @@ std::vector<std::size_t> checkWhatTheVerdictReads(std::vector<CandidateFit>* fit
 /// The same with the diagnosis's checks (checkClosedLoop), run one after the other (the result does not
 /// depend on the threads). A fit found unbounded here removes less than min_shrink of the gap, so it
 /// could not have become the verdict: its note says so, as refitWhereTheyCouldWin's does. Nothing when
-/// context.closed_loop_checks is false. Returns the labels of the fits checked.
-std::vector<std::string> checkWhatTheVerdictReads(const FitContext& context, const std::string& where_subsystem,
-                                                  const DiagnosisOptions& options, std::vector<CandidateFit>* fits);
+/// context.closed_loop_checks is false. The subsystem is context.where_subsystem. Returns the labels of
+/// the fits checked.
+std::vector<std::string> checkWhatTheVerdictReads(const FitContext& context, const DiagnosisOptions& options,
+                                                  std::vector<CandidateFit>* fits);
 
 /// Runs `fit`'s closed-loop check (stabilityRequirements) and records it in the fit.
 void checkClosedLoop(const CandidateObjective& objective, const FitContext& context, CandidateFit* fit);

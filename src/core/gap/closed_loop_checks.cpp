@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <exception>
-#include <numeric>
 
 #include "lane_keeping/gap/bounded_refit.h"
 #include "lane_keeping/gap/candidate_effects.h"
@@ -90,8 +89,9 @@ std::vector<std::size_t> checkWhatTheVerdictReads(std::vector<CandidateFit>* fit
   return checked;
 }
 
-std::vector<std::string> checkWhatTheVerdictReads(const FitContext& context, const std::string& where_subsystem,
-                                                  const DiagnosisOptions& options, std::vector<CandidateFit>* fits) {
+std::vector<std::string> checkWhatTheVerdictReads(const FitContext& context, const DiagnosisOptions& options,
+                                                  std::vector<CandidateFit>* fits) {
+  const std::string& where_subsystem = context.where_subsystem;
   std::vector<std::string> checked;
   if (!context.closed_loop_checks) return checked;
   const double gap_before = gapOf(context.nominal_held->scores, {});

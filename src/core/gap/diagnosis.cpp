@@ -202,7 +202,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   // choice of forms, which removes fits from it.
   keepBestForms(&fits, &report.notes);
   const Clock::time_point checks_start = Clock::now();
-  const std::vector<std::string> checked = checkWhatTheVerdictReads(fit_context, report.where.subsystem, options, &fits);
+  const std::vector<std::string> checked = checkWhatTheVerdictReads(fit_context, options, &fits);
   if (!checked.empty()) report.wall_seconds.emplace_back("closed-loop checks", secondsSince(checks_start));
   report.wall_seconds.emplace_back("which", secondsSince(which_start));
 
