@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "lane_keeping/sim/model_factory.h"
 #include "lane_keeping/gap/replay_shooting.h"
@@ -248,15 +249,17 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
     // samples are h or more apart (100 Hz) every sample ends a step, as before.
     const bool interpolate = !sp.compliant();
     Eigen::VectorXd midpoint(n);
-    auto simulateWithStep = [&](const Eigen::VectorXd& start, Eigen::MatrixXd& outputs, double h) {
+    // The sample from which the run left the model's domain; std::nullopt where it stayed inside.
+    auto simulateWithStep = [&](const Eigen::VectorXd& start, Eigen::MatrixXd& outputs,
+                                double h) -> std::optional<std::size_t> {
       Eigen::VectorXd q = start;
       double t = t0;
       // Left the model's domain from sample i on: the rest held at the (clamped) angle reached.
-      auto diverged = [&](const Eigen::VectorXd& q_end, std::size_t i) {
+      auto diverged = [&](const Eigen::VectorXd& q_end, std::size_t i) -> std::optional<std::size_t> {
         for (std::size_t k = i; k < last; ++k) {
           outputs(k - first, 0) = std::isfinite(q_end[0]) ? std::clamp(q_end[0], -limit, limit) : limit;
         }
-        return false;
+        return i;
       };
       for (std::size_t i = first; i < last;) {
         if (exponential && options.steering_midpoint_output && i + 1 < last && times[i + 1] - t <= h * (1.0 + 1e-9)) {
@@ -297,19 +300,17 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
         t = times[end];
         i = end + 1;
       }
-      return true;
+      return std::nullopt;
     };
     // The step bounds above hold for the logged motion; the model's own motion can be faster (a LuGre
     // bristle relaxes at sigma0 |delta_dot| / g with the predicted rate, which overshoots at a stick-slip
     // transition). An interval that leaves the model's domain is tried again with a quarter, then a
-    // sixteenth of the step before it counts as diverged: on the benchmark's LuGre-friction truth, two of
+    // sixteenth of the step before it counts as diverged, unless it leaves at the same sample again
+    // (withShorterStepsWhereTheyHelp, replay_shooting.h): on the benchmark's LuGre-friction truth, two of
     // the 0.15 s intervals starting near a rate reversal (t = 22.0 s and 22.08 s of the small sinusoid)
     // blew up at the bounded step and replay to 0.002-0.003 at a quarter of it.
     auto simulate = [&](const Eigen::VectorXd& start, Eigen::MatrixXd& outputs) {
-      for (double h = step, tries = 0; tries < 3; h *= 0.25, ++tries) {
-        if (simulateWithStep(start, outputs, h)) return true;
-      }
-      return false;
+      return withShorterStepsWhereTheyHelp(step, [&](double h) { return simulateWithStep(start, outputs, h); });
     };
     Eigen::MatrixXd predicted;
     if (!shootWithNuisance(simulate, q0, {0, 1}, priors, measured, sigmas, options.estimate_initial_conditions,

@@ -4,8 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include <Eigen/Dense>
 
@@ -179,6 +181,39 @@ TEST(Replay, ALinearColumnTakesTwoSamplesAStepTheFirstFromTheStepsDenseOutput) {
     EXPECT_GT(apart, 0.0) << k;  // the pairing took place
     EXPECT_GT(moved, 3e-5) << k;
   }
+}
+
+TEST(Replay, ShorterStepsAreTriedOnlyWhileTheyMoveTheDeparture) {
+  // attempt(h) answers from a script: the sample at which the run leaves the domain, or none. The steps
+  // it is asked for and the answer are recorded.
+  auto run = [](std::vector<std::optional<std::size_t>> script, std::vector<double>* steps) {
+    std::size_t k = 0;
+    const bool inside = replay::withShorterStepsWhereTheyHelp(0.002, [&](double h) {
+      steps->push_back(h);
+      return script.at(k++);
+    });
+    return inside;
+  };
+  std::vector<double> steps;
+  EXPECT_TRUE(run({std::nullopt}, &steps));  // inside at the first step: one run
+  EXPECT_EQ(steps, (std::vector<double>{0.002}));
+  steps.clear();
+  // Leaves at the same sample at h and h/4: the model's own departure, no third run.
+  EXPECT_FALSE(run({5, 5}, &steps));
+  EXPECT_EQ(steps, (std::vector<double>{0.002, 0.0005}));
+  steps.clear();
+  // The departure moved with the step (an instability of the step): h/16 is tried, and stays inside.
+  EXPECT_TRUE(run({5, 9, std::nullopt}, &steps));
+  EXPECT_EQ(steps, (std::vector<double>{0.002, 0.0005, 0.000125}));
+  steps.clear();
+  EXPECT_TRUE(run({5, std::nullopt}, &steps));  // a quarter of the step is enough (the LuGre rate reversal)
+  EXPECT_EQ(steps.size(), 2u);
+  steps.clear();
+  EXPECT_FALSE(run({5, 9, 9}, &steps));  // never more than three runs
+  EXPECT_EQ(steps.size(), 3u);
+  steps.clear();
+  EXPECT_FALSE(run({9, 5, 2}, &steps));
+  EXPECT_EQ(steps.size(), 3u);
 }
 
 TEST(Replay, DistributedTreadWithCarcassLagReproducesTheLog) {
