@@ -90,9 +90,9 @@ void integrate(F&& f, double t0, double t1, double h, Eigen::VectorXd& q, Steppe
 /// A shorter step helps where the step made the run unstable: that departure moves (or goes) with the
 /// step. A run that leaves at the same sample at two steps in a row follows the model's own motion out of
 /// the domain (a fitted column that lets the wheel swing past its stop), and no shorter step is tried.
-/// (On the candidates' torque-limit lane change, 7,765 of the column fits' 35,818 steering intervals
-/// left the domain at every step, 7,733 of them at the same sample at h and h/4; their tries at h/16 were
-/// 1.1-1.3 s of the fits' 2.4-2.7 s of steering replays, one thread.)
+/// (On the candidates' torque-limit lane change, diagnosed with the column candidates alone, 7,765 of
+/// 35,818 runs of a steering interval left the domain at every step, 7,733 of them at the same sample at
+/// h and h/4; their tries at h/16 were 1.1-1.3 s of 2.4-2.7 s of steering replays, one thread.)
 template <class Attempt>
 bool withShorterStepsWhereTheyHelp(double h, Attempt&& attempt) {
   std::optional<std::size_t> left_before;
