@@ -2,7 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <deque>
 #include <utility>
 
 #include <Eigen/Dense>
@@ -45,41 +45,90 @@ std::vector<double> smoothedDerivative(const std::vector<double>& t, const std::
   const double h = n > 1 ? (t[n - 1] - t[0]) / static_cast<double>(n - 1) : 0.0;
   bool uniform = n > 1 && h > 0.0;
   for (std::size_t j = 0; uniform && j < n; ++j) uniform = std::fabs(t[j] - t[0] - j * h) <= 1e-6 * h;
-  std::map<std::pair<std::size_t, std::size_t>, std::vector<double>> shapes;
-  std::vector<double> s;
+  // Each sample's window [a_i, b_i]: at least two samples each side where the log allows, so the
+  // quadratic is determined.
+  std::vector<std::size_t> first(n), last(n);
   std::size_t lo = 0, hi = 0;
   for (std::size_t i = 0; i < n; ++i) {
     while (lo < i && t[i] - t[lo] > half_width) ++lo;
     while (hi + 1 < n && t[hi + 1] - t[i] <= half_width) ++hi;
-    // At least two samples each side where the log allows, so the quadratic is determined.
     std::size_t a = std::min(lo, i >= 2 ? i - 2 : 0);
     std::size_t b = std::max(hi, std::min(n - 1, i + 2));
     if (b - a < 2) {
       a = a > 0 ? a - 1 : a;
       b = std::min(n - 1, b + 1);
     }
-    // Fit v = c0 + c1 (t - t_i) + c2 (t - t_i)^2 by least squares (scaled time).
-    const std::vector<double>* w = nullptr;
-    std::vector<double> local;
+    first[i] = a;
+    last[i] = b;
+  }
+  // A window's shape: the samples before and after t_i, (i - a_i, b_i - i). Its weights are found
+  // from the samples before, then among the few shapes with that many (a map's search per sample was
+  // a fifth of the filter).
+  std::size_t widest = 0;
+  for (std::size_t i = 0; i < n; ++i) widest = std::max(widest, last[i] - first[i]);
+  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> shapes_before(uniform ? widest + 1 : 0);
+  std::deque<std::vector<double>> shapes;  // (a deque keeps its elements in place as it grows)
+  std::vector<double> s;
+  // Fit v = c0 + c1 (t - t_i) + c2 (t - t_i)^2 by least squares (scaled time): the weights of i's window.
+  auto weightsAt = [&](std::size_t i, std::vector<double>* local) -> const std::vector<double>& {
+    const std::size_t a = first[i], b = last[i];
     if (uniform) {
-      auto [it, added] = shapes.try_emplace({i - a, b - i});
-      if (added) {
-        const double scale = (b - a) * h;
-        s.clear();
-        for (std::size_t j = a; j <= b; ++j) s.push_back((static_cast<double>(j) - static_cast<double>(i)) * h / scale);
-        it->second = quadraticWeights(s, scale, order);
+      auto& candidates = shapes_before[i - a];  // (after, index in shapes)
+      for (const auto& [after, index] : candidates) {
+        if (after == b - i) return shapes[index];
       }
-      w = &it->second;
-    } else {
-      const double scale = std::max(t[b] - t[a], 1e-12);
+      const double scale = (b - a) * h;
       s.clear();
-      for (std::size_t j = a; j <= b; ++j) s.push_back((t[j] - t[i]) / scale);
-      local = quadraticWeights(s, scale, order);
-      w = &local;
+      for (std::size_t j = a; j <= b; ++j) s.push_back((static_cast<double>(j) - static_cast<double>(i)) * h / scale);
+      candidates.emplace_back(b - i, shapes.size());
+      shapes.push_back(quadraticWeights(s, scale, order));
+      return shapes.back();
     }
+    const double scale = std::max(t[b] - t[a], 1e-12);
+    s.clear();
+    for (std::size_t j = a; j <= b; ++j) s.push_back((t[j] - t[i]) / scale);
+    *local = quadraticWeights(s, scale, order);
+    return *local;
+  };
+  std::vector<double> local;
+  constexpr std::size_t kLanes = 4;
+  for (std::size_t i = 0; i < n;) {
+    if (uniform && i + kLanes <= n) {
+      // Four neighbours' sums side by side, each over its own window and weights in the same order as
+      // alone, so each is the same to the last bit; independent, they do not wait on one another's
+      // additions. (Rounding moves a sample across the half-width here and there, so neighbours' windows
+      // differ by a sample at an end: the common length first, then each one's rest.)
+      const std::vector<double>* w[kLanes];
+      const double* v[kLanes];
+      std::size_t len[kLanes];
+      for (std::size_t k = 0; k < kLanes; ++k) {
+        w[k] = &weightsAt(i + k, &local);  // (uniform: the shape's weights, which stay in place)
+        v[k] = values.data() + first[i + k];
+        len[k] = last[i + k] - first[i + k] + 1;
+      }
+      const std::size_t common = *std::min_element(len, len + kLanes);
+      const double *w0 = w[0]->data(), *w1 = w[1]->data(), *w2 = w[2]->data(), *w3 = w[3]->data();
+      double sum[kLanes] = {0.0, 0.0, 0.0, 0.0};
+      for (std::size_t j = 0; j < common; ++j) {
+        sum[0] += w0[j] * v[0][j];
+        sum[1] += w1[j] * v[1][j];
+        sum[2] += w2[j] * v[2][j];
+        sum[3] += w3[j] * v[3][j];
+      }
+      for (std::size_t k = 0; k < kLanes; ++k) {
+        for (std::size_t j = common; j < len[k]; ++j) sum[k] += (*w[k])[j] * v[k][j];
+        out[i + k] = sum[k];
+      }
+      i += kLanes;
+      continue;
+    }
+    const std::vector<double>& w = weightsAt(i, &local);
+    const double* v = values.data() + first[i];
+    const std::size_t len = last[i] - first[i] + 1;
     double sum = 0.0;
-    for (std::size_t j = a; j <= b; ++j) sum += (*w)[j - a] * values[j];
+    for (std::size_t j = 0; j < len; ++j) sum += w[j] * v[j];
     out[i] = sum;
+    ++i;
   }
   return out;
 }

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <optional>
+#include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -360,6 +361,70 @@ TEST(LogSignals, TheSmoothingFilterIsTheLocalQuadraticFitOnUniformAndJitteredSam
       EXPECT_LT(worst_quadratic, 1e-9 * 8.0 * std::pow(1000.0, order)) << "jitter " << jitter << " order " << order;
     }
   }
+}
+
+TEST(LogSignals, TheSmoothingFilterGivesEachSampleTheSameBitsWhereverItFallsInABatch) {
+  // The filter sums four neighbouring samples' windows side by side. A sample's output must not depend
+  // on which of the four it is: the same log started k samples later puts each interior sample in
+  // another place of its batch, and its output must be the same to the last bit. (Dyadic stamps keep
+  // the step, the windows and so the weights exactly the same in both.)
+  std::vector<double> t, y;
+  for (int i = 0; i < 4000; ++i) {
+    t.push_back(i / 1024.0);
+    y.push_back(std::sin(7.0 * t.back()) + 0.01 * std::cos(911.0 * i));
+  }
+  for (const double half_width : {0.0151, 0.1}) {
+    for (int order = 0; order <= 2; ++order) {
+      const std::vector<double> all = smoothedDerivative(t, y, half_width, order);
+      for (std::size_t k = 1; k <= 7; ++k) {
+        const std::vector<double> later =
+            smoothedDerivative(std::vector<double>(t.begin() + k, t.end()), std::vector<double>(y.begin() + k, y.end()),
+                               half_width, order);
+        const std::size_t margin = 2 * static_cast<std::size_t>(half_width * 1024.0) + 4;
+        std::size_t compared = 0, differing = 0;
+        for (std::size_t i = margin; i + margin < later.size(); ++i, ++compared) {
+          if (later[i] != all[i + k]) ++differing;
+        }
+        EXPECT_GT(compared, 3000u);
+        EXPECT_EQ(differing, 0u) << "half width " << half_width << " order " << order << " shifted by " << k;
+      }
+    }
+  }
+  // And each output is its window's dot product summed from the window's first sample on, as one
+  // sample alone: the weights read back exactly as the responses to unit impulses (a sum of zeros and
+  // one weight), summed in that order, give the same bits. On 1 ms stamps and a 15 ms half-width,
+  // rounding moves a sample across the half-width here and there, so neighbours in a batch have
+  // windows of different lengths (checked below).
+  std::vector<double> t_ms, y_ms;
+  for (int i = 0; i < 4000; ++i) {
+    t_ms.push_back(0.001 * i);
+    y_ms.push_back(std::sin(7.0 * t_ms.back()) + 0.01 * std::cos(911.0 * i));
+  }
+  const double half_width = 0.015;
+  const std::size_t from = 1000, count = 64, reach = 24;  // samples from .. from + count; windows within reach
+  std::vector<std::vector<double>> weight_of(count);        // weight_of[k][j - (from - reach)]
+  for (std::size_t j = from - reach; j < from + count + reach; ++j) {
+    std::vector<double> impulse(t_ms.size(), 0.0);
+    impulse[j] = 1.0;
+    const std::vector<double> response = smoothedDerivative(t_ms, impulse, half_width, 1);
+    for (std::size_t k = 0; k < count; ++k) weight_of[k].push_back(response[from + k]);
+  }
+  const std::vector<double> filtered = smoothedDerivative(t_ms, y_ms, half_width, 1);
+  std::set<std::size_t> lengths;
+  for (std::size_t k = 0; k < count; ++k) {
+    double sum = 0.0;  // (the zero weights outside the window add nothing, not even rounding)
+    std::size_t length = 0;
+    for (std::size_t j = from - reach; j < from + count + reach; ++j) {
+      const double w = weight_of[k][j - (from - reach)];
+      sum += w * y_ms[j];
+      length += w != 0.0;
+    }
+    lengths.insert(length);
+    EXPECT_EQ(sum, filtered[from + k]) << "sample " << from + k;
+    // and those are the sample's own window's weights (the least-squares fit over it, as in the test above)
+    EXPECT_NEAR(filtered[from + k], directQuadraticFit(t_ms, y_ms, half_width, from + k, 1), 7e-6) << "sample " << from + k;
+  }
+  EXPECT_GE(lengths.size(), 2u);  // neighbours with windows of different lengths were among them
 }
 
 TEST(LogSignals, NearestAlongSmoothedKeepsOneSamplesNoiseAndFollowsTheSignal) {
