@@ -85,8 +85,10 @@ std::vector<double> polish(const CandidateObjective& objective, std::vector<doub
 /// or every sqrt(n)-th of a log's n pieces where that is sparser (coarseFitData, pieces of the chassis
 /// horizon), one further step on all of it; else the search and
 /// the polish on all of it. A profile effect (no polish: its loss is not smooth) searches
-/// all the data.
-std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride = 1);
+/// all the data. Each search is held to its evaluation budget (evaluation_budget.h); one that spends it
+/// keeps its best point, and `note` (if given) says so.
+std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride = 1,
+                                    std::string* note = nullptr);
 
 /// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta (`objective`
 /// over `context.train`, its replays the training scores). Its p + 2 replays run on `threads` threads (the

@@ -13,6 +13,7 @@
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/bounded_loop.h"
 #include "lane_keeping/gap/candidate_effects.h"
+#include "lane_keeping/gap/evaluation_budget.h"
 #include "lane_keeping/gap/evaluation.h"
 
 namespace lane_keeping {
@@ -79,6 +80,14 @@ class CandidateObjective {
     std::lock_guard<std::mutex> lock(memo_mutex_);
     return replay_losses_.size();
   }
+  /// Holds the searches on this objective to `budget` (evaluation_budget.h), counted from now;
+  /// EvaluationBudget{} lifts it. Past it, a point not remembered costs nothing: replayLoss and loss
+  /// return +inf, residuals false, bounds a loop that leaves the bounds at t = 0; nothing computed
+  /// after that is remembered. (evaluation(), which the scores call, is never held.) Like the memos,
+  /// bookkeeping of the searches run on the objective, hence const.
+  void limit(const EvaluationBudget& budget) const;
+  /// Whether a search reached the budget since the last limit().
+  bool budgetSpent() const { return spent_.load(); }
   /// How many times this objective has replayed its data (evaluation(), from any caller).
   std::size_t evaluations() const { return evaluations_.load(); }
 
@@ -124,6 +133,11 @@ class CandidateObjective {
   mutable std::map<std::vector<double>, double> replay_losses_;
   mutable std::map<std::pair<std::vector<double>, RequirementKey>, LoopDivergence> bounds_;
   mutable std::atomic<std::size_t> evaluations_{0};
+  /// Takes one replay (or closed-loop run) from the budget; false, and the budget spent, past it.
+  bool spend(std::atomic<std::size_t>& used, std::size_t allowed) const;
+  mutable EvaluationBudget budget_;
+  mutable std::atomic<std::size_t> replays_used_{0}, closed_loops_used_{0};
+  mutable std::atomic<bool> spent_{false};
 };
 
 }  // namespace diagnosis

@@ -37,7 +37,8 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
     const int lines = std::max(1, std::min(threads, static_cast<int>(start.size())));
     parallelFor(start.size(), lines, [&](std::size_t j) {
       const auto& p = objective.effect().params[j];
-      losses[j] = lineSearch(objective, moved[j], j, p.lower, p.upper, 13, start_loss, std::max(1, threads / lines));
+      losses[j] = lineSearch(objective, moved[j], j, p.lower, p.upper, search::kFirstRoundGrid, start_loss,
+                             std::max(1, threads / lines));
     });
     std::vector<double> best = start;
     double best_loss = start_loss;
@@ -77,7 +78,7 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
     double loss = objective.loss(theta);
     for (std::size_t j = 0; j < theta.size() && !ok; ++j) {
       const auto [lo, hi] = narrowedRange(objective.effect().params[j], theta[j]);
-      loss = lineSearch(objective, theta, j, lo, hi, 7, loss, threads);
+      loss = lineSearch(objective, theta, j, lo, hi, search::kSecondRoundGrid, loss, threads);
       ok = bounded(theta);
     }
     debug("narrowed lines");
@@ -110,7 +111,10 @@ void refitBounded(const FitContext& context, const DiagnosisOptions& options, Ca
             ? coarseFitData(*context.train, options.replay.chassis_horizon, options.coarse_fit_stride)
             : *context.train;
     CandidateObjective search = objective.on(coarse);
+    const EvaluationBudget budget = refitSearchBudget(fit->theta.size(), fit->unbounded_on.size(), threads);
+    search.limit(budget);
     theta = holdStable(search, fit->theta, fit->unbounded_on, &fit->stability_note, &bounded, threads);
+    if (search.budgetSpent()) fit->stability_note += "; " + budgetSpentNote("the bounded refit's search", budget);
   } catch (const std::exception& e) {
     fit->ok = false;
     fit->note = std::string("bounded refit failed: ") + e.what();

@@ -25,13 +25,8 @@ namespace diagnosis {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-/// Brent's relative tolerance on a line's axis, 2^(1 - bits) = 2^-10 ~ 1e-3.
-constexpr int kLineSearchBits = 11;
-/// Most bisection steps (closed-loop runs) a constrained line search spends locating a boundary of the
-/// bounded region: 1/16 of a grid spacing, 2.3 % of a log-scale parameter on the narrowed second round's
-/// grid (7 points over a factor of 9), which sets the fit's final precision. (Six steps cost the column's
-/// refit on the benchmark's small logs ~20 more closed-loop runs, for the same shrinks.)
-constexpr int kBoundaryBisections = 4;
+using search::kBoundaryBisections;
+using search::kLineSearchBits;
 
 /// Brent's stopping width near u on a line's axis (Boost.Math: 2^(1 - bits) (|u| + 1/4)).
 double axisTolerance(double u) { return std::ldexp(1.0, 1 - kLineSearchBits) * (std::fabs(u) + 0.25); }
@@ -141,7 +136,7 @@ std::vector<double> polish(const CandidateObjective& objective, std::vector<doub
   // towards the start, 49 replays and 0.8 s of its 1.7 s fit; now 10 replays. Without the search the
   // friction fits stopped short: held-out shrinks 72.9 -> 71.5 % and 68.6 -> 67.9 %.)
   solver.line_search_interpolation_type = ceres::QUADRATIC;
-  solver.max_num_line_search_step_size_iterations = 6;
+  solver.max_num_line_search_step_size_iterations = search::kPolishLineSearchTrials;
   solver.function_tolerance = 1e-6;
   solver.logging_type = ceres::SILENT;
   ceres::Solver::Summary summary;
@@ -214,7 +209,7 @@ double lineSearch(const CandidateObjective& objective, std::vector<double>& thet
   // (It starts at the bracket's end, a grid point the objective's memo returns.) Golden section alone
   // took 861 replays for the searches of the benchmark's 60 s log (lk_bench_gap), Brent 690.
   const double a = grid[best > 0 ? best - 1 : 0], b = grid[std::min(best + 1, grid.size() - 1)];
-  boost::uintmax_t iterations = 10;
+  boost::uintmax_t iterations = search::kBrentIterations;
   double u = grid[best], loss = losses[best];
   if (found_bounded) {
     // Under a stability requirement, with a bounded grid point: Brent on the replay loss alone (no
@@ -344,7 +339,8 @@ std::vector<double> coordinateFit(const CandidateObjective& objective, std::vect
     for (std::size_t j = 0; j < params.size(); ++j) {
       const auto& p = params[j];
       const auto [lo, hi] = round > 0 ? narrowedRange(p, theta[j]) : std::make_pair(p.lower, p.upper);
-      loss = lineSearch(objective, theta, j, lo, hi, round == 0 ? 13 : 7, loss, threads);
+      loss = lineSearch(objective, theta, j, lo, hi, round == 0 ? search::kFirstRoundGrid : search::kSecondRoundGrid, loss,
+                        threads);
     }
   }
   return theta;
@@ -370,9 +366,25 @@ class FitPhases {
   std::chrono::steady_clock::time_point last_;
 };
 
-std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride) {
-  if (objective.effect().profile) return coordinateFit(objective);
-  if (coarse_stride <= 1) return polish(objective, coordinateFit(objective), 4);
+std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride, std::string* note) {
+  const std::size_t p = objective.effect().params.size();
+  const bool profile = objective.effect().profile;
+  // Each search held to its budget (evaluation_budget.h): the most its constants let it evaluate.
+  auto budgeted = [&](const CandidateObjective& on, const EvaluationBudget& budget, auto&& run) {
+    struct Lifted {  // also when the search throws
+      const CandidateObjective& on;
+      ~Lifted() { on.limit({}); }
+    } lifted{on};
+    on.limit(budget);
+    std::vector<double> theta = run();
+    if (on.budgetSpent() && note != nullptr) *note += (note->empty() ? "" : "; ") + budgetSpentNote("its search", budget);
+    return theta;
+  };
+  if (profile || coarse_stride <= 1) {
+    return budgeted(objective, fitSearchBudget(p, profile), [&] {
+      return profile ? coordinateFit(objective) : polish(objective, coordinateFit(objective), search::kSearchPolishSteps);
+    });
+  }
   // Coarse to fine: the search (~20 evaluations per parameter and round) and a first polish run on a
   // coarse_stride-th of the data and find the optimum's neighbourhood; one Levenberg-Marquardt step on
   // all of it moves to the optimum of all the data (a Gauss-Newton step from near the optimum of a third
@@ -385,13 +397,20 @@ std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::si
   const std::vector<Dataset> coarse = coarseFitData(objective.data(), piece, coarse_stride);
   const CandidateObjective coarse_objective = objective.on(coarse);
   FitPhases phases(objective.effect());
-  const std::vector<double> searched = coordinateFit(coarse_objective);
-  phases.done("coarse search on " + std::to_string(pieceCount(coarse, piece)) + " of " +
-                  std::to_string(pieceCount(objective.data(), piece)) + " pieces",
-              coarse_objective.evaluations());
-  const std::vector<double> coarse_polished = polish(coarse_objective, searched, 4);
-  phases.done("coarse polish", coarse_objective.evaluations());
-  const std::vector<double> polished = polish(objective, coarse_polished, 1);
+  const std::vector<double> coarse_polished = budgeted(coarse_objective, fitSearchBudget(p, false), [&] {
+    const std::vector<double> searched = coordinateFit(coarse_objective);
+    phases.done("coarse search on " + std::to_string(pieceCount(coarse, piece)) + " of " +
+                    std::to_string(pieceCount(objective.data(), piece)) + " pieces",
+                coarse_objective.evaluations());
+    const std::vector<double> polished = polish(coarse_objective, searched, search::kSearchPolishSteps);
+    phases.done("coarse polish", coarse_objective.evaluations());
+    return polished;
+  });
+  EvaluationBudget final_step;
+  final_step.replays = polishReplays(p, search::kFinalPolishSteps);
+  final_step.closed_loops = 0;
+  const std::vector<double> polished =
+      budgeted(objective, final_step, [&] { return polish(objective, coarse_polished, search::kFinalPolishSteps); });
   phases.done("polish on all", objective.evaluations());
   return polished;
 }
@@ -494,7 +513,7 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const FitContext& conte
   std::vector<double> theta;
   FitPhases phases(effect);
   try {
-    theta = leastSquaresFit(objective, options.coarse_fit_stride);
+    theta = leastSquaresFit(objective, options.coarse_fit_stride, &fit.note);
   } catch (const std::exception& e) {
     fit.note = std::string("fit failed: ") + e.what();
     return fit;

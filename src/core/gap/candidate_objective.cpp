@@ -50,9 +50,23 @@ Evaluation CandidateObjective::evaluation(const std::vector<double>& theta) cons
 }
 
 bool CandidateObjective::residuals(const std::vector<double>& theta, std::vector<double>* out) const {
-  if (!admissible(theta)) return false;
+  if (!admissible(theta) || !spend(replays_used_, budget_.replays)) return false;
   *out = fitResiduals(evaluation(theta));
   return true;
+}
+
+void CandidateObjective::limit(const EvaluationBudget& budget) const {
+  budget_ = budget;
+  replays_used_ = 0;
+  closed_loops_used_ = 0;
+  spent_ = false;
+}
+
+bool CandidateObjective::spend(std::atomic<std::size_t>& used, std::size_t allowed) const {
+  if (allowed == EvaluationBudget::kUnlimited) return true;
+  if (used.fetch_add(1) < allowed) return true;
+  spent_ = true;
+  return false;
 }
 
 bool CandidateObjective::residuals(const std::vector<double>& theta, const Evaluation& ev,
@@ -70,16 +84,19 @@ bool memoizable(const std::vector<double>& theta) {
   return std::none_of(theta.begin(), theta.end(), [](double v) { return std::isnan(v); });
 }
 
-/// memo[key], computed and stored on the first call. The computation runs outside the lock: Ceres
-/// evaluates points from several threads, and two threads computing one point store the same value.
+/// memo[key], computed and stored on the first call; not stored once the evaluation budget is spent
+/// (a value computed then may be the budget's stand-in, CandidateObjective::limit). The computation
+/// runs outside the lock: Ceres evaluates points from several threads, and two threads computing one
+/// point store the same value.
 template <typename Memo, typename Compute>
 typename Memo::mapped_type remembered(std::mutex& mutex, Memo& memo, typename Memo::key_type key,
-                                      const Compute& compute) {
+                                      const std::atomic<bool>& spent, const Compute& compute) {
   {
     std::lock_guard<std::mutex> lock(mutex);
     if (const auto it = memo.find(key); it != memo.end()) return it->second;
   }
   const typename Memo::mapped_type value = compute();
+  if (spent.load()) return value;
   std::lock_guard<std::mutex> lock(mutex);
   memo.emplace(std::move(key), value);
   return value;
@@ -89,10 +106,12 @@ typename Memo::mapped_type remembered(std::mutex& mutex, Memo& memo, typename Me
 
 double CandidateObjective::replayLoss(const std::vector<double>& theta) const {
   auto compute = [&] {
-    if (!configFor(theta).problems().empty()) return std::numeric_limits<double>::infinity();
+    if (!configFor(theta).problems().empty() || !spend(replays_used_, budget_.replays)) {
+      return std::numeric_limits<double>::infinity();
+    }
     return sumOfSquares(fitResiduals(evaluation(theta)));
   };
-  return memoizable(theta) ? remembered(memo_mutex_, replay_losses_, theta, compute) : compute();
+  return memoizable(theta) ? remembered(memo_mutex_, replay_losses_, theta, spent_, compute) : compute();
 }
 
 double CandidateObjective::loss(const std::vector<double>& theta) const {
@@ -101,7 +120,7 @@ double CandidateObjective::loss(const std::vector<double>& theta) const {
     if (const double d = divergence(theta); d > 0.0) return kUnstableLoss * (1.0 + d);
     return replayLoss(theta);
   };
-  return memoizable(theta) ? remembered(memo_mutex_, losses_, theta, compute) : compute();
+  return memoizable(theta) ? remembered(memo_mutex_, losses_, theta, spent_, compute) : compute();
 }
 
 void CandidateObjective::requireStability(std::vector<BoundedLoopRequirement> requirements) {
@@ -111,10 +130,20 @@ void CandidateObjective::requireStability(std::vector<BoundedLoopRequirement> re
 }
 
 LoopDivergence CandidateObjective::bounds(const std::vector<double>& theta, const BoundedLoopRequirement& r) const {
-  auto compute = [&] { return boundsCheck(changeFor(theta), r); };
+  auto compute = [&] {
+    if (!spend(closed_loops_used_, budget_.closed_loops)) {
+      LoopDivergence spent;
+      spent.diverged = true;
+      spent.time = 0.0;
+      spent.message = "not run: the search's evaluation budget is spent";
+      return spent;
+    }
+    return boundsCheck(changeFor(theta), r);
+  };
   if (!memoizable(theta) || !memoizable({r.horizon, r.max_steering_angle, r.max_torque})) return compute();
   return remembered(memo_mutex_, bounds_,
-                    {theta, RequirementKey{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque}}, compute);
+                    {theta, RequirementKey{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque}}, spent_,
+                    compute);
 }
 
 double CandidateObjective::divergence(const std::vector<double>& theta) const {

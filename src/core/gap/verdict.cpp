@@ -43,6 +43,7 @@ std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const 
     r.score = fit.ok ? fit.evidence : 0.0;
     r.closed_loop_bounded = !fit.ok || fit.unbounded_on.empty();
     r.closed_loop_checked = !fit.ok || fit.loop_checked;
+    if (fit.ok && !fit.note.empty()) notes->push_back(fit.effect->name + ": " + fit.note);
     if (fit.ok && fit.at_bound) notes->push_back(fit.effect->name + ": a fitted parameter is pinned at a bound of its range");
     if (fit.ok && !fit.stability_note.empty()) notes->push_back(fit.effect->name + ": " + fit.stability_note);
     ranking.push_back(r);

@@ -113,6 +113,38 @@ TEST(Verdict, PinnedWithinNoiseComparesTheImprovementWithTheSpreadOfTheDraws) {
   EXPECT_EQ(within.count("b"), 0u);
 }
 
+TEST(RankFits, AFitWhoseSearchSpentItsBudgetIsRankedByItsGapAndTheNotesSaySo) {
+  // A search held back by its evaluation budget (evaluation_budget.h) keeps the best point it had: a
+  // fit like any other, ranked by its held-out gap, with its note among the report's notes.
+  const CandidateEffect* friction = nullptr;
+  const CandidateEffect* limit = nullptr;
+  for (const auto& e : candidateEffects()) {
+    if (e.name == "steering_friction") friction = &e;
+    if (e.name == "torque_limit") limit = &e;
+  }
+  ASSERT_TRUE(friction && limit);
+  std::vector<CandidateFit> fits(2);
+  fits[0].effect = limit;
+  fits[0].theta = {40.0};
+  fits[0].heldout_after = 0.008;
+  fits[1].effect = friction;
+  fits[1].theta = {2.0, 0.5};
+  fits[1].heldout_after = 0.004;
+  fits[1].note = "its search stopped at its evaluation budget (122 replays) and kept the best point it had found";
+  for (auto& fit : fits) {
+    fit.ok = true;
+    fit.loop_checked = true;
+    fit.heldout_before = 0.01;
+  }
+  std::vector<std::string> notes;
+  const std::vector<RankedEffect> ranking = rankFits(fits, SimConfig{}, 0.01, &notes);
+  ASSERT_EQ(ranking.size(), 2u);
+  EXPECT_EQ(ranking[0].effect, "steering_friction");
+  EXPECT_NEAR(ranking[0].shrink, 0.6, 1e-12);
+  ASSERT_EQ(notes.size(), 1u);
+  EXPECT_EQ(notes[0], "steering_friction: " + fits[1].note);
+}
+
 }  // namespace
 }  // namespace diagnosis
 }  // namespace lane_keeping
