@@ -78,9 +78,11 @@ std::size_t polishReplays(std::size_t params, int steps);
 
 /// The budget of a least-squares fit's search (leastSquaresFit) on the data it searches (the coarse data,
 /// or all of it for a profile effect or coarse_stride 1): the coordinate search, then (not for a profile
-/// effect) the polish of kSearchPolishSteps. The step on all the data is held to polishReplays(params,
-/// kFinalPolishSteps).
+/// effect) the polish of kSearchPolishSteps.
 EvaluationBudget fitSearchBudget(std::size_t params, bool profile);
+
+/// The budget of a coarse-to-fine fit's step on all the data: a polish of kFinalPolishSteps.
+EvaluationBudget fitFinalStepBudget(std::size_t params);
 
 /// The budget of a bounded refit's search (holdStable) with `requirements` logs required to stay bounded
 /// and `threads` threads: its start; the first move (one line per parameter over its range) and a

@@ -406,11 +406,9 @@ std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::si
     phases.done("coarse polish", coarse_objective.evaluations());
     return polished;
   });
-  EvaluationBudget final_step;
-  final_step.replays = polishReplays(p, search::kFinalPolishSteps);
-  final_step.closed_loops = 0;
-  const std::vector<double> polished =
-      budgeted(objective, final_step, [&] { return polish(objective, coarse_polished, search::kFinalPolishSteps); });
+  const std::vector<double> polished = budgeted(objective, fitFinalStepBudget(p), [&] {
+    return polish(objective, coarse_polished, search::kFinalPolishSteps);
+  });
   phases.done("polish on all", objective.evaluations());
   return polished;
 }

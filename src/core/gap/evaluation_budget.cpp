@@ -42,6 +42,13 @@ EvaluationBudget fitSearchBudget(std::size_t params, bool profile) {
   return budget;
 }
 
+EvaluationBudget fitFinalStepBudget(std::size_t params) {
+  EvaluationBudget budget;
+  budget.replays = polishReplays(params, kFinalPolishSteps);
+  budget.closed_loops = 0;
+  return budget;
+}
+
 EvaluationBudget refitSearchBudget(std::size_t params, std::size_t requirements, int threads) {
   const std::size_t wide = constrainedLineSearchPoints(kFirstRoundGrid, threads);
   const std::size_t narrow = constrainedLineSearchPoints(kSecondRoundGrid, threads);

@@ -2,12 +2,15 @@
 // The inputs of a candidate's objective on one benchmark log, for tests of the fit machinery: the case
 // shortened to `duration`, its truth log at `log_rate`, the nominal configuration, the whole log (after
 // `margin`) as the data, and the nominal replays' sigma1 the objective reuses.
+#include <algorithm>
+#include <cmath>
 #include <set>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
 #include "gap_benchmark/benchmark_cases.h"
+#include "lane_keeping/gap/bounded_loop.h"
 #include "lane_keeping/gap/candidate_effects.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/evaluation.h"
@@ -36,6 +39,16 @@ struct BenchmarkObjectiveFixture {
     nominal = evaluate(nullptr, data, available, ReplayOptions{});
   }
 };
+
+/// The logged bounds as stabilityRequirements sets them (1.5 times the steering range + 0.02 rad, twice
+/// the torque range + 5 N m) on the fixture's first run, over its first `horizon` seconds.
+inline BoundedLoopRequirement loggedBoundsOverFirstSeconds(const BenchmarkObjectiveFixture& f, double horizon) {
+  const LogSignals& log = *f.runs[0].log;
+  double angle = 0.0, torque = 0.0;
+  for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
+  for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
+  return {&log, f.runs[0].config.get(), horizon, 1.5 * angle + 0.02, 2.0 * torque + 5.0};
+}
 
 /// The candidate `name` in its form `form` (empty: its first form).
 inline const CandidateEffect& candidateNamed(const std::string& name, const std::string& form = "") {

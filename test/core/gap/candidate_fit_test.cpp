@@ -15,16 +15,6 @@ namespace lane_keeping {
 namespace diagnosis {
 namespace {
 
-/// The logged bounds as stabilityRequirements sets them (1.5 times the steering range + 0.02 rad, twice
-/// the torque range + 5 N m) on the fixture's first run, over its first `horizon` seconds.
-BoundedLoopRequirement loggedBoundsOverFirstSeconds(const BenchmarkObjectiveFixture& f, double horizon) {
-  const LogSignals& log = *f.runs[0].log;
-  double angle = 0.0, torque = 0.0;
-  for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
-  for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
-  return {&log, f.runs[0].config.get(), horizon, 1.5 * angle + 0.02, 2.0 * torque + 5.0};
-}
-
 /// The column's damping line searched from `start` under `required` (as the bounded refit does), on one
 /// and on two threads, each on a fresh objective (nothing remembered between): the points and losses found.
 std::pair<std::vector<std::vector<double>>, std::vector<double>> dampingSearchesOnOneAndTwoThreads(

@@ -51,7 +51,7 @@ TEST(EvaluationBudget, EachSearchOfAFitStaysWithinItsBudgetOnAShortAndALongLog) 
               polish(coarse_objective, coordinateFit(coarse_objective), search::kSearchPolishSteps);
           EXPECT_LE(coarse_objective.evaluations(), fitSearchBudget(p, false).replays);
           unheld = polish(objective, searched, search::kFinalPolishSteps);
-          EXPECT_LE(objective.evaluations(), polishReplays(p, search::kFinalPolishSteps));
+          EXPECT_LE(objective.evaluations(), fitFinalStepBudget(p).replays);
           EXPECT_GT(objective.evaluations(), p) << "the step on all the data replayed nothing: nothing counted";
         }
       }
@@ -102,11 +102,7 @@ TEST(EvaluationBudget, ABoundedRefitWithinItsBudgetIsUnchangedAndOneHeldToAFewCl
   const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
   const CandidateEffect& column = candidateNamed("steering_compliance");
   const LogSignals& log = *f.runs[0].log;
-  double angle = 0.0, torque = 0.0;
-  for (double v : log.samples(LogSignals::kDelta)) angle = std::max(angle, std::fabs(v));
-  for (double v : log.samples(LogSignals::kTorque)) torque = std::max(torque, std::fabs(v));
-  const std::vector<BoundedLoopRequirement> required{
-      {&log, f.runs[0].config.get(), log.end() - log.start(), 1.5 * angle + 0.02, 2.0 * torque + 5.0}};
+  const std::vector<BoundedLoopRequirement> required{loggedBoundsOverFirstSeconds(f, log.end() - log.start())};
   const std::vector<double> start{4000.0, 0.5, column.params[2].initial};
   {
     CandidateObjective check(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
