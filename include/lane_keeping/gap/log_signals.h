@@ -8,6 +8,8 @@
 ///   velocity of G  x_dot, y_dot,  and sigma1 = -x_dot sin(psi) + y_dot cos(psi) (row 2 of Beregi eq 1),
 ///   the rate of the speed dV/dt (when the log has v), and, kept for nearestAlongSmoothed only, the pose
 ///   x, y, psi and the steering angle and rate smoothed by the same filter (value, zero lag).
+#include <algorithm>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -41,10 +43,73 @@ class LogSignals {
   bool speedVaries() const { return speed_varies_; }
   /// The fastest logged speed (the configured one when the speed does not vary), for step bounds.
   double fastestSpeed(double configured) const;
+  /// Where a time falls among the samples: between samples i and i + 1 at weight w of the second, or
+  /// before the first (edge -1) or after the last (edge +1), where at() clamps. Found once, it serves
+  /// every channel read at that time: a replay's derivative reads three to five, and finding the
+  /// interval again for each was 9-11 % of lk_bench_gap's CPU (perf, 2026-11-27).
+  struct Position {
+    std::size_t i = 0;
+    double w = 0.0;
+    int edge = 0;
+  };
+  /// The position of t, found by indexAtOrBefore.
+  Position positionAt(double t) const {
+    const std::vector<double>& times = log_.t;
+    Position p;
+    if (t <= times.front()) {
+      p.edge = -1;
+    } else if (t >= times.back()) {
+      p.edge = 1;
+    } else {
+      p.i = indexAtOrBefore(t);
+      p.w = (t - times[p.i]) / (times[p.i + 1] - times[p.i]);
+    }
+    return p;
+  }
+  /// The same position, found from the sample `*hint` (updated): a few steps for the near-monotone
+  /// queries of a replay, indexAtOrBefore beyond them (a replay that starts its next interval, or its
+  /// lead-in, seconds back).
+  Position positionAt(double t, std::size_t* hint) const {
+    const std::vector<double>& times = log_.t;
+    Position p;
+    if (t <= times.front()) {
+      p.edge = -1;
+      return p;
+    }
+    if (t >= times.back()) {
+      p.edge = 1;
+      return p;
+    }
+    std::size_t i = std::min(*hint, times.size() - 2);
+    for (int step = 0;; ++step) {
+      if (i > 0 && times[i] > t) {
+        --i;
+      } else if (i + 2 < times.size() && times[i + 1] <= t) {
+        ++i;
+      } else {
+        break;  // times[i] <= t < times[i + 1]: the sample indexAtOrBefore finds (or t is NaN)
+      }
+      if (step == kHintWalk) {
+        i = indexAtOrBefore(t);
+        break;
+      }
+    }
+    *hint = i;
+    p.i = i;
+    p.w = (t - times[i]) / (times[i + 1] - times[i]);
+    return p;
+  }
+  /// Linear interpolation at a position (the same value as at(c, t) at the position of t).
+  double at(Channel c, const Position& p) const {
+    const std::vector<double>& v = values_[c];
+    if (v.empty()) throwMissing(c);
+    if (p.edge != 0) return p.edge < 0 ? v.front() : v.back();
+    return v[p.i] + p.w * (v[p.i + 1] - v[p.i]);
+  }
   /// Linear interpolation; clamps to the first/last sample outside the log.
-  double at(Channel c, double t) const;
+  double at(Channel c, double t) const { return at(c, positionAt(t)); }
   /// Same, starting the search from `*hint` (updated): O(1) for the near-monotone queries of a replay.
-  double at(Channel c, double t, std::size_t* hint) const;
+  double at(Channel c, double t, std::size_t* hint) const { return at(c, positionAt(t, hint)); }
   /// The sample nearest to t, carried to t along the channel's smoothed curve (x, y, psi, delta,
   /// delta_rate; other channels: plain interpolation): the noise of one sample wherever t falls.
   /// Linear interpolation between white-noisy samples averages two of them, so its noise midway is
@@ -70,6 +135,10 @@ class LogSignals {
   double noise(Channel c) const { return noise_[c]; }
 
  private:
+  /// Steps from a hint before positionAt(t, hint) asks indexAtOrBefore.
+  static constexpr int kHintWalk = 4;
+  [[noreturn]] void throwMissing(Channel c) const;
+
   GapLog log_;
   SampleIndex index_;
   std::vector<std::vector<double>> values_;

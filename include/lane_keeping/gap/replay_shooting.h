@@ -49,17 +49,25 @@ void imposeLoggedSpeed(SingleTrackModel& model, const LogSignals& log, double t,
 /// The true lateral velocity of G in the body frame at t from the logged motion (LogSignals::kSigma1 is
 /// -x' sin psi + y' cos psi with the logged psi): with a localisation heading bias b (config.sensors) the
 /// true heading is psi - b, which turns the logged velocity by b.
-inline double trueLateralVelocity(const LogSignals& log, const SensorParams& sensors, double t) {
-  const double sigma1 = log.at(LogSignals::kSigma1, t);
+inline double trueLateralVelocity(const LogSignals& log, const SensorParams& sensors, const LogSignals::Position& at) {
+  const double sigma1 = log.at(LogSignals::kSigma1, at);
   if (sensors.pose_bias_psi == 0.0) return sigma1;
-  const double b = sensors.poseBiasScale(log.at(LogSignals::kX, t)) * sensors.pose_bias_psi;
-  const double psi = log.at(LogSignals::kPsi, t);
-  const double u = log.at(LogSignals::kXDot, t) * std::cos(psi) + log.at(LogSignals::kYDot, t) * std::sin(psi);
+  const double b = sensors.poseBiasScale(log.at(LogSignals::kX, at)) * sensors.pose_bias_psi;
+  const double psi = log.at(LogSignals::kPsi, at);
+  const double u = log.at(LogSignals::kXDot, at) * std::cos(psi) + log.at(LogSignals::kYDot, at) * std::sin(psi);
   return sigma1 * std::cos(b) + u * std::sin(b);
+}
+/// The same at time t.
+inline double trueLateralVelocity(const LogSignals& log, const SensorParams& sensors, double t) {
+  return trueLateralVelocity(log, sensors, log.positionAt(t));
 }
 /// The true yaw rate at t: the logged one less the gyro's bias (config.sensors).
 inline double trueYawRate(const LogSignals& log, const SensorParams& sensors, double t, std::size_t* hint = nullptr) {
   return (hint ? log.at(LogSignals::kYawRate, t, hint) : log.at(LogSignals::kYawRate, t)) - sensors.yaw_rate_bias;
+}
+/// The same at a position in the log (LogSignals::positionAt).
+inline double trueYawRate(const LogSignals& log, const SensorParams& sensors, const LogSignals::Position& at) {
+  return log.at(LogSignals::kYawRate, at) - sensors.yaw_rate_bias;
 }
 
 /// Shooting intervals [a, b) covering the segments.

@@ -25,21 +25,24 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   const int n = 5 + front_n + rear_n;
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
   std::size_t hint = 0, speed_hint = 0;
+  // Returns the position of t in the log, for the other channels read at t.
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     imposeLoggedSpeed(model, log, t, &speed_hint);
+    const LogSignals::Position here = log.positionAt(t, &hint);
     full[kX] = q[0];
     full[kY] = q[1];
     full[kPsi] = q[2];
     full[kSigma1] = q[3];
     full[kSigma2] = q[4];
-    full[kDelta] = log.at(C::kDelta, t, &hint);
-    full[kSigma3] = log.at(C::kDeltaRate, t, &hint);
+    full[kDelta] = log.at(C::kDelta, here);
+    full[kSigma3] = log.at(C::kDeltaRate, here);
     for (int i = 0; i < front_n; ++i) full[front0 + i] = q[5 + i];
     for (int i = 0; i < rear_n; ++i) full[rear0 + i] = q[5 + front_n + i];
+    return here;
   };
   double last_u = config.vehicle.speed;
   auto f = [&](double t, const Eigen::VectorXd& q, Eigen::VectorXd& q_dot) {
-    assemble(t, q);
+    const LogSignals::Position here = assemble(t, q);
     const SingleTrackModel::Trig<double> steer(full[kDelta]);
     model.kinematics(full.data(), steer, full_dot.data());
     const auto c = model.contacts(full.data(), steer);
@@ -47,7 +50,7 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     const TireForces<double> tr = model.rearTire().evaluate(c.rear, full.data() + rear0, full_dot.data() + rear0);
     double f1, f2, sigma_dot[2];
     model.bodyForces(full.data(), steer, tf, tr, &f1, &f2);
-    model.solveChassisAccelerations(steer, f1, f2, log.at(C::kDeltaAcceleration, t, &hint), sigma_dot);
+    model.solveChassisAccelerations(steer, f1, f2, log.at(C::kDeltaAcceleration, here), sigma_dot);
     q_dot[0] = full_dot[kX];
     q_dot[1] = full_dot[kY];
     q_dot[2] = full_dot[kPsi];
@@ -96,8 +99,9 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
       // Both tires' states at t0, driven by the logged steering, yaw rate and sigma1 before it.
       Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
       const auto logged = [&](double t) {
-        motion[3] = trueLateralVelocity(log, sensors, t);
-        motion[4] = trueYawRate(log, sensors, t);
+        const LogSignals::Position here = log.positionAt(t);
+        motion[3] = trueLateralVelocity(log, sensors, here);
+        motion[4] = trueYawRate(log, sensors, here);
         assemble(t, motion);
       };
       const Eigen::VectorXd z = tireStatesAfterLeadIn(model, true, log.start(), t0, step, logged, full, full_dot);

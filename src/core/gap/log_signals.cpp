@@ -248,29 +248,8 @@ double LogSignals::fastestSpeed(double configured) const {
   return fastest;
 }
 
-double LogSignals::at(Channel c, double t) const {
-  const auto& v = values_[c];
-  if (v.empty()) throw LaneKeepingError(log_.source + ": the log has no " + name(c) + " (a partial log)");
-  const auto& times = log_.t;
-  if (t <= times.front()) return v.front();
-  if (t >= times.back()) return v.back();
-  const std::size_t i = indexAtOrBefore(t);
-  const double w = (t - times[i]) / (times[i + 1] - times[i]);
-  return v[i] + w * (v[i + 1] - v[i]);
-}
-
-double LogSignals::at(Channel c, double t, std::size_t* hint) const {
-  const auto& v = values_[c];
-  if (v.empty()) throw LaneKeepingError(log_.source + ": the log has no " + name(c) + " (a partial log)");
-  const auto& times = log_.t;
-  if (t <= times.front()) return v.front();
-  if (t >= times.back()) return v.back();
-  std::size_t i = std::min(*hint, times.size() - 2);
-  while (i > 0 && times[i] > t) --i;
-  while (i + 2 < times.size() && times[i + 1] <= t) ++i;
-  *hint = i;
-  const double w = (t - times[i]) / (times[i + 1] - times[i]);
-  return v[i] + w * (v[i + 1] - v[i]);
+void LogSignals::throwMissing(Channel c) const {
+  throw LaneKeepingError(log_.source + ": the log has no " + name(c) + " (a partial log)");
 }
 
 double LogSignals::nearestAlongSmoothed(Channel c, double t) const {

@@ -73,7 +73,8 @@ SingleTrackModel replayModel(const SimConfig& config, const LogSignals& log) {
 
 void imposeLoggedSpeed(SingleTrackModel& model, const LogSignals& log, double t, std::size_t* hint) {
   if (!log.speedVaries()) return;
-  model.setSpeed(log.at(LogSignals::kSpeed, t, hint), log.at(LogSignals::kSpeedRate, t, hint));
+  const LogSignals::Position here = log.positionAt(t, hint);
+  model.setSpeed(log.at(LogSignals::kSpeed, here), log.at(LogSignals::kSpeedRate, here));
 }
 
 }  // namespace replay

@@ -110,26 +110,29 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
 
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
   std::size_t hint = 0, torque_hint = 0, speed_hint = 0;
+  // Returns the position of t in the log, for the other channels read at t.
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     imposeLoggedSpeed(model, log, t, &speed_hint);
+    const LogSignals::Position here = log.positionAt(t, &hint);
     full[kDelta] = q[0];
     full[kSigma3] = q[1];
     full[kSigma1] = lateralVelocity(t);
-    full[kSigma2] = trueYawRate(log, config.sensors, t, &hint);
+    full[kSigma2] = trueYawRate(log, config.sensors, here);
     for (int i = 0; i < steer_n; ++i) full[steer0 + i] = q[2 + i];
     for (int i = 0; i < front_n; ++i) full[front0 + i] = q[2 + steer_n + i];
+    return here;
   };
   auto f = [&](double t, const Eigen::VectorXd& q, Eigen::VectorXd& q_dot) {
-    assemble(t, q);
+    const LogSignals::Position here = assemble(t, q);
     const SingleTrackModel::Trig<double> steer(q[0]);
     const auto contacts = model.contacts(full.data(), steer);
     const TireForces<double> tf =
         model.frontTire().evaluate(contacts.front, full.data() + front0, full_dot.data() + front0);
-    const double torque = torque_delay == 0.0 ? log.at(C::kTorque, t, &hint) : log.at(C::kTorque, t - torque_delay, &torque_hint);
+    const double torque = torque_delay == 0.0 ? log.at(C::kTorque, here) : log.at(C::kTorque, t - torque_delay, &torque_hint);
     const double transmitted = model.steeringSystem(full.data(), torque, full_dot.data());
     q_dot[0] = q[1];
     // Row 3 of eq 3: J_F (sigma2' + sigma3') = M_F + (transmitted torque), sigma2' from the log.
-    q_dot[1] = (tf.aligning_moment + transmitted) / JF - log.at(C::kYawAcceleration, t, &hint);
+    q_dot[1] = (tf.aligning_moment + transmitted) / JF - log.at(C::kYawAcceleration, here);
     for (int i = 0; i < steer_n; ++i) q_dot[2 + i] = full_dot[steer0 + i];
     for (int i = 0; i < front_n; ++i) q_dot[2 + steer_n + i] = full_dot[front0 + i];
   };
@@ -223,8 +226,9 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
       // The front tire's state at t0, driven by the logged steering angle and rate before it.
       Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
       const auto logged = [&](double t) {
-        motion[0] = log.at(C::kDelta, t);
-        motion[1] = log.at(C::kDeltaRate, t);
+        const LogSignals::Position here = log.positionAt(t);
+        motion[0] = log.at(C::kDelta, here);
+        motion[1] = log.at(C::kDeltaRate, here);
         assemble(t, motion);
       };
       const Eigen::VectorXd z = tireStatesAfterLeadIn(model, false, log.start(), t0, tire_step, logged, full, full_dot);
