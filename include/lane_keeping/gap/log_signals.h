@@ -54,32 +54,16 @@ class LogSignals {
   };
   /// The position of t, found by indexAtOrBefore.
   Position positionAt(double t) const {
-    const std::vector<double>& times = log_.t;
-    Position p;
-    if (t <= times.front()) {
-      p.edge = -1;
-    } else if (t >= times.back()) {
-      p.edge = 1;
-    } else {
-      p.i = indexAtOrBefore(t);
-      p.w = (t - times[p.i]) / (times[p.i + 1] - times[p.i]);
-    }
-    return p;
+    if (const int edge = edgeOf(t)) return Position{0, 0.0, edge};
+    // (indexAtOrBefore gives the last sample for a NaN time, which has no interval after it.)
+    return between(std::min(indexAtOrBefore(t), log_.t.size() - 2), t);
   }
   /// The same position, found from the sample `*hint` (updated): a few steps for the near-monotone
   /// queries of a replay, indexAtOrBefore beyond them (a replay that starts its next interval, or its
   /// lead-in, seconds back).
   Position positionAt(double t, std::size_t* hint) const {
+    if (const int edge = edgeOf(t)) return Position{0, 0.0, edge};
     const std::vector<double>& times = log_.t;
-    Position p;
-    if (t <= times.front()) {
-      p.edge = -1;
-      return p;
-    }
-    if (t >= times.back()) {
-      p.edge = 1;
-      return p;
-    }
     std::size_t i = std::min(*hint, times.size() - 2);
     for (int step = 0;; ++step) {
       if (i > 0 && times[i] > t) {
@@ -95,9 +79,7 @@ class LogSignals {
       }
     }
     *hint = i;
-    p.i = i;
-    p.w = (t - times[i]) / (times[i + 1] - times[i]);
-    return p;
+    return between(i, t);
   }
   /// Linear interpolation at a position (the same value as at(c, t) at the position of t).
   double at(Channel c, const Position& p) const {
@@ -138,6 +120,15 @@ class LogSignals {
   /// Steps from a hint before positionAt(t, hint) asks indexAtOrBefore.
   static constexpr int kHintWalk = 4;
   [[noreturn]] void throwMissing(Channel c) const;
+  /// -1 at or before the first sample (and anywhere in a log of one sample), +1 at or after the last, 0
+  /// between (and for NaN, whose position gives NaN).
+  int edgeOf(double t) const {
+    return log_.t.size() < 2 || t <= log_.t.front() ? -1 : (t >= log_.t.back() ? 1 : 0);
+  }
+  /// The position of t between samples i and i + 1.
+  Position between(std::size_t i, double t) const {
+    return Position{i, (t - log_.t[i]) / (log_.t[i + 1] - log_.t[i]), 0};
+  }
 
   GapLog log_;
   SampleIndex index_;

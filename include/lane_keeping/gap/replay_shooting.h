@@ -61,13 +61,14 @@ inline double trueLateralVelocity(const LogSignals& log, const SensorParams& sen
 inline double trueLateralVelocity(const LogSignals& log, const SensorParams& sensors, double t) {
   return trueLateralVelocity(log, sensors, log.positionAt(t));
 }
-/// The true yaw rate at t: the logged one less the gyro's bias (config.sensors).
-inline double trueYawRate(const LogSignals& log, const SensorParams& sensors, double t, std::size_t* hint = nullptr) {
-  return (hint ? log.at(LogSignals::kYawRate, t, hint) : log.at(LogSignals::kYawRate, t)) - sensors.yaw_rate_bias;
-}
-/// The same at a position in the log (LogSignals::positionAt).
+/// The true yaw rate at a position in the log (LogSignals::positionAt): the logged one less the gyro's
+/// bias (config.sensors).
 inline double trueYawRate(const LogSignals& log, const SensorParams& sensors, const LogSignals::Position& at) {
   return log.at(LogSignals::kYawRate, at) - sensors.yaw_rate_bias;
+}
+/// The same at time t.
+inline double trueYawRate(const LogSignals& log, const SensorParams& sensors, double t) {
+  return trueYawRate(log, sensors, log.positionAt(t));
 }
 
 /// Shooting intervals [a, b) covering the segments.

@@ -255,11 +255,10 @@ void LogSignals::throwMissing(Channel c) const {
 double LogSignals::nearestAlongSmoothed(Channel c, double t) const {
   const auto& smoothed = smoothed_[c];
   if (smoothed.empty()) return at(c, t);
-  const auto& times = log_.t;
-  if (t <= times.front()) return values_[c].front();
-  if (t >= times.back()) return values_[c].back();
-  const std::size_t i = indexAtOrBefore(t);
-  const double w = (t - times[i]) / (times[i + 1] - times[i]);
+  const Position p = positionAt(t);
+  if (p.edge != 0) return p.edge < 0 ? values_[c].front() : values_[c].back();
+  const std::size_t i = p.i;
+  const double w = p.w;
   const std::size_t j = w > 0.5 ? i + 1 : i;  // the nearest sample
   const double along = smoothed[i] + w * (smoothed[i + 1] - smoothed[i]);
   return values_[c][j] + (along - smoothed[j]);

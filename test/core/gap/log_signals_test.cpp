@@ -89,6 +89,7 @@ TEST(LogSignals, APositionGivesEveryChannelItsInterpolationWhateverTheHint) {
   EXPECT_EQ(log.at(LogSignals::kTorque, raw.t.front() - 5.0, &hint), raw.torque.front());
   EXPECT_EQ(log.at(LogSignals::kTorque, raw.t.back() + 5.0, &hint), raw.torque.back());
   EXPECT_TRUE(std::isnan(log.at(LogSignals::kTorque, std::numeric_limits<double>::quiet_NaN(), &hint)));
+  EXPECT_TRUE(std::isnan(log.at(LogSignals::kTorque, std::numeric_limits<double>::quiet_NaN())));
 }
 
 TEST(LogSignals, AChannelTheLogLacksIsNamedWhenRead) {
