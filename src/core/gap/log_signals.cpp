@@ -2,35 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <deque>
 #include <utility>
 
-#include <Eigen/Dense>
-
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/gap/window_weights.h"
 
 namespace lane_keeping {
-
-namespace {
-
-/// The least-squares fit of v = c0 + c1 s + c2 s^2 over samples at offsets s_k from t_i (scaled by
-/// `scale`), as weights on the samples: the requested coefficient is sum_k w_k v_k.
-std::vector<double> quadraticWeights(const std::vector<double>& s, double scale, int order) {
-  Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
-  for (double sk : s) {
-    const Eigen::Vector3d basis(1.0, sk, sk * sk);
-    A += basis * basis.transpose();
-  }
-  const Eigen::LDLT<Eigen::Matrix3d> ldlt = A.ldlt();
-  Eigen::Vector3d pick = Eigen::Vector3d::Zero();
-  pick[order] = order == 0 ? 1.0 : (order == 1 ? 1.0 / scale : 2.0 / (scale * scale));
-  const Eigen::Vector3d row = ldlt.solve(pick);  // A is symmetric: e^T A^-1 basis = (A^-1 e)^T basis
-  std::vector<double> w(s.size());
-  for (std::size_t k = 0; k < s.size(); ++k) w[k] = row[0] + row[1] * s[k] + row[2] * s[k] * s[k];
-  return w;
-}
-
-}  // namespace
 
 std::vector<double> smoothedDerivative(const std::vector<double>& t, const std::vector<double>& values,
                                        double half_width, int order) {
@@ -63,26 +40,28 @@ std::vector<double> smoothedDerivative(const std::vector<double>& t, const std::
   }
   // A window's shape: the samples before and after t_i, (i - a_i, b_i - i). Its weights are found
   // from the samples before, then among the few shapes with that many (a map's search per sample was
-  // a fifth of the filter).
+  // a fifth of the filter); a shape first met in this call comes from this thread's weights of earlier
+  // calls on the same step (window_weights.h), solved there if none has met it.
   std::size_t widest = 0;
   for (std::size_t i = 0; i < n; ++i) widest = std::max(widest, last[i] - first[i]);
-  std::vector<std::vector<std::pair<std::size_t, std::size_t>>> shapes_before(uniform ? widest + 1 : 0);
-  std::deque<std::vector<double>> shapes;  // (a deque keeps its elements in place as it grows)
+  std::vector<std::vector<std::pair<std::size_t, const std::vector<double>*>>> shapes_before(uniform ? widest + 1 : 0);
+  UniformWindowWeights* remembered = nullptr;
+  if (uniform) {
+    remembered = &windowWeightsOfThisThread();
+    remembered->select(h, order);
+  }
   std::vector<double> s;
   // Fit v = c0 + c1 (t - t_i) + c2 (t - t_i)^2 by least squares (scaled time): the weights of i's window.
   auto weightsAt = [&](std::size_t i, std::vector<double>* local) -> const std::vector<double>& {
     const std::size_t a = first[i], b = last[i];
     if (uniform) {
-      auto& candidates = shapes_before[i - a];  // (after, index in shapes)
-      for (const auto& [after, index] : candidates) {
-        if (after == b - i) return shapes[index];
+      auto& candidates = shapes_before[i - a];  // (after, its weights)
+      for (const auto& [after, weights] : candidates) {
+        if (after == b - i) return *weights;
       }
-      const double scale = (b - a) * h;
-      s.clear();
-      for (std::size_t j = a; j <= b; ++j) s.push_back((static_cast<double>(j) - static_cast<double>(i)) * h / scale);
-      candidates.emplace_back(b - i, shapes.size());
-      shapes.push_back(quadraticWeights(s, scale, order));
-      return shapes.back();
+      const std::vector<double>& weights = remembered->weights(i - a, b - i);
+      candidates.emplace_back(b - i, &weights);
+      return weights;
     }
     const double scale = std::max(t[b] - t[a], 1e-12);
     s.clear();
