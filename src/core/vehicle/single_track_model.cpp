@@ -13,6 +13,8 @@ SingleTrackModel::SingleTrackModel(const VehicleParams& params, const SteeringPa
       plain_steering_(steering.torque_limit == 0.0 && steering.dead_band == 0.0 && !steering.hasFriction() &&
                       !steering.compliant()),
       soft_saturation_(steering.softSaturation()),
+      lugre_friction_(steering.lugreFriction()),
+      unsensed_disturbance_(disturbance.active() && !disturbance.sensedByAccelerometer()),
       front_(std::move(front)),
       rear_(std::move(rear)),
       inv_V_(1.0 / params.speed),
