@@ -65,6 +65,13 @@ struct CandidateFit {
 double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
                   int points, double current_loss, int threads = 1);
 
+/// The points of lineSearch's grid over [lo, hi] along parameter j from theta, in the order in which it
+/// checks their closed loops under a stability requirement: by replay loss, ties to the lower index (the
+/// replays run on `threads` threads and are remembered by the objective). The bounded refit runs the
+/// first of them ahead beside its whole-log check (bounded_refit.h).
+std::vector<std::vector<double>> constrainedScanOrder(const CandidateObjective& objective, const std::vector<double>& theta,
+                                                      std::size_t j, double lo, double hi, int points, int threads = 1);
+
 /// The range coordinateFit's second round searches around `value`: a third to three times it for a
 /// log-scale parameter, else +-15 % of the parameter's range; within its bounds.
 std::pair<double, double> narrowedRange(const EffectParameter& p, double value);

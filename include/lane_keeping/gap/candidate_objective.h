@@ -54,11 +54,10 @@ class CandidateObjective {
   /// first move along it), and under a requirement each visit costs a closed-loop run.
   double loss(const std::vector<double>& theta) const;
 
-  /// Whether loss(theta) is remembered (it then costs no replay and no closed-loop run).
-  bool remembersLoss(const std::vector<double>& theta) const {
-    std::lock_guard<std::mutex> lock(memo_mutex_);
-    return losses_.count(theta) > 0;
-  }
+  /// Whether loss(theta) costs no replay and no closed-loop run: it is remembered, or what it is made of
+  /// is (the bounds checks under the requirement in force, up to the first that diverges, and the replay
+  /// loss if none does).
+  bool remembersLoss(const std::vector<double>& theta) const;
 
   /// The sum of squared residuals at theta whatever the stability requirement (+inf for an invalid
   /// configuration): loss(theta) where the closed loop stays bounded. Remembered per theta.

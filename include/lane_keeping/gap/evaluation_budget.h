@@ -86,7 +86,8 @@ EvaluationBudget fitFinalStepBudget(std::size_t params);
 
 /// The budget of a bounded refit's search (holdStable) with `requirements` logs required to stay bounded
 /// and `threads` threads: its start; the first move (one line per parameter over its range) and a
-/// coordinate search under the short-horizon requirements; the whole-log check; one narrowed line per
+/// coordinate search under the short-horizon requirements; the whole-log check (with two or more threads,
+/// the first narrowed line's grid run ahead beside it); one narrowed line per
 /// parameter under the whole-log requirements, each checked; and, if none of those lines gets the loop
 /// bounded, the first move and coordinate search again under them. Each point runs at most one closed
 /// loop per required log and horizon (two horizons per log).

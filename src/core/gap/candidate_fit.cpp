@@ -150,6 +150,48 @@ std::vector<double> polish(const CandidateObjective& objective, std::vector<doub
   return polished_loss < sumOfSquares(r0) ? polished : theta;
 }
 
+namespace {
+
+/// A line search's axis: the logarithm of a log-scale parameter, else the parameter itself.
+double toAxis(const EffectParameter& p, double v) { return p.log_scale ? std::log(v) : v; }
+double fromAxis(const EffectParameter& p, double u) { return p.log_scale ? std::exp(u) : u; }
+
+/// The grid of a line search over [lo, hi], on the axis.
+std::vector<double> axisGrid(const EffectParameter& p, double lo, double hi, int points) {
+  const double ua = toAxis(p, lo), ub = toAxis(p, hi);
+  std::vector<double> grid(points);
+  for (int i = 0; i < points; ++i) grid[i] = ua + (ub - ua) * i / (points - 1);
+  return grid;
+}
+
+/// The order in which a constrained line search checks its grid's closed loops: by replay loss, ties to
+/// the lower index (the replays evaluated on `threads` threads, each loss in its place).
+std::vector<std::size_t> scanOrder(const CandidateObjective& objective, const std::function<std::vector<double>(std::size_t)>& pointAt,
+                                   std::vector<double>* replayed, int threads) {
+  parallelFor(replayed->size(), threads, [&](std::size_t i) { (*replayed)[i] = objective.replayLoss(pointAt(i)); });
+  std::vector<std::size_t> order(replayed->size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return (*replayed)[a] < (*replayed)[b]; });
+  return order;
+}
+
+}  // namespace
+
+std::vector<std::vector<double>> constrainedScanOrder(const CandidateObjective& objective, const std::vector<double>& theta,
+                                                      std::size_t j, double lo, double hi, int points, int threads) {
+  const EffectParameter& p = objective.effect().params[j];
+  const std::vector<double> grid = axisGrid(p, lo, hi, points);
+  auto pointAt = [&](std::size_t i) {
+    std::vector<double> t = theta;
+    t[j] = fromAxis(p, grid[i]);
+    return t;
+  };
+  std::vector<double> replayed(grid.size());
+  std::vector<std::vector<double>> out;
+  for (std::size_t i : scanOrder(objective, pointAt, &replayed, threads)) out.push_back(pointAt(i));
+  return out;
+}
+
 double lineSearch(const CandidateObjective& objective, std::vector<double>& theta, std::size_t j, double lo, double hi,
                   int points, double current_loss, int threads) {
   const EffectParameter& p = objective.effect().params[j];
@@ -159,11 +201,9 @@ double lineSearch(const CandidateObjective& objective, std::vector<double>& thet
     return t;
   };
   auto lossAt = [&](double value) { return objective.loss(withValue(value)); };
-  auto toAxis = [&](double v) { return p.log_scale ? std::log(v) : v; };
-  auto fromAxis = [&](double u) { return p.log_scale ? std::exp(u) : u; };
-  const double ua = toAxis(lo), ub = toAxis(hi);
-  std::vector<double> grid(points), losses(points, std::numeric_limits<double>::infinity());
-  for (int i = 0; i < points; ++i) grid[i] = ua + (ub - ua) * i / (points - 1);
+  auto fromAxis = [&](double u) { return lane_keeping::diagnosis::fromAxis(p, u); };
+  const std::vector<double> grid = axisGrid(p, lo, hi, points);
+  std::vector<double> losses(points, std::numeric_limits<double>::infinity());
   auto pointAt = [&](std::size_t i) {
     std::vector<double> t = theta;
     t[j] = fromAxis(grid[i]);
@@ -185,14 +225,14 @@ double lineSearch(const CandidateObjective& objective, std::vector<double>& thet
     // point, which is the best (as min_element over every point's loss would find it, ties to the lower
     // index). The bounded refit of a column (issue 18) spent most of its time checking points of the grid
     // that could not be its best.
-    each(static_cast<std::size_t>(points), [&](std::size_t i) { replayed[i] = objective.replayLoss(pointAt(i)); });
-    std::vector<std::size_t> order(points);
-    for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
-    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return replayed[a] < replayed[b]; });
+    const std::vector<std::size_t> order = scanOrder(objective, pointAt, &replayed, threads);
     bool& found = found_bounded;
     const std::size_t batch = static_cast<std::size_t>(std::max(1, threads));
-    for (std::size_t k = 0; k < order.size() && !found; k += batch) {
-      const std::size_t n = std::min(batch, order.size() - k);
+    for (std::size_t k = 0, n = 1; k < order.size() && !found; k += n) {
+      // A point whose loss is remembered (the bounded refit runs the first ones ahead, beside its
+      // whole-log check: bounded_refit.cpp) costs nothing and is taken alone: if it is bounded, the scan
+      // ends without running a batch beside it.
+      n = objective.remembersLoss(pointAt(order[k])) ? 1 : std::min(batch, order.size() - k);
       each(n, [&](std::size_t m) { losses[order[k + m]] = objective.loss(pointAt(order[k + m])); });
       for (std::size_t m = 0; m < n && !found; ++m) {
         const std::size_t i = order[k + m];

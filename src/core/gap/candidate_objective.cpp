@@ -123,6 +123,19 @@ double CandidateObjective::loss(const std::vector<double>& theta) const {
   return memoizable(theta) ? remembered(memo_mutex_, losses_, theta, spent_, compute) : compute();
 }
 
+bool CandidateObjective::remembersLoss(const std::vector<double>& theta) const {
+  std::lock_guard<std::mutex> lock(memo_mutex_);
+  if (losses_.count(theta) > 0) return true;
+  if (!memoizable(theta)) return false;
+  for (const BoundedLoopRequirement& r : stable_on_) {  // as divergence() checks them
+    if (!memoizable({r.horizon, r.max_steering_angle, r.max_torque})) return false;
+    const auto it = bounds_.find({theta, RequirementKey{r.log, r.config, r.horizon, r.max_steering_angle, r.max_torque}});
+    if (it == bounds_.end()) return false;
+    if (it->second.diverged) return true;
+  }
+  return replay_losses_.count(theta) > 0;
+}
+
 void CandidateObjective::requireStability(std::vector<BoundedLoopRequirement> requirements) {
   stable_on_ = std::move(requirements);
   std::lock_guard<std::mutex> lock(memo_mutex_);

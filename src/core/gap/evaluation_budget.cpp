@@ -56,8 +56,10 @@ EvaluationBudget refitSearchBudget(std::size_t params, std::size_t requirements,
   // A search (holdStable's `search`): its start, the first move, the coordinate search.
   const std::size_t search_points = 1 + params * wide + params * wide + second_round * narrow;
   const std::size_t search_lines = params + params + second_round;
-  // The whole-log check and the narrowed lines (their start and each line's check).
-  const std::size_t narrowed_points = 1 + 1 + params * narrow + params;
+  // The whole-log check and the narrowed lines (their start and each line's check), and on two or more
+  // threads the first narrowed line's grid run ahead beside the check.
+  const std::size_t ahead = threads > 1 ? static_cast<std::size_t>(kSecondRoundGrid) : 0;
+  const std::size_t narrowed_points = 1 + 1 + params * narrow + params + ahead;
   const std::size_t points = 2 * search_points + narrowed_points + 1;
   const std::size_t lines = 2 * search_lines + params;
   EvaluationBudget budget;

@@ -166,6 +166,50 @@ TEST(LineSearch, UnderAStabilityRequirementTheClosedLoopsRunAheadChangeNothing) 
   EXPECT_GT(std::fabs(u - std::round(u)), 1e-6) << "the search stopped on a grid point: no bisection compared";
 }
 
+TEST(LineSearch, UnderAStabilityRequirementPointsCheckedAheadChangeNothingAndAreNotRunAgain) {
+  // The bounded refit checks the first points of its first narrowed line ahead, in the line's own order
+  // (constrainedScanOrder), beside its whole-log check. The line must then take the path of a line with
+  // nothing run ahead (the same point and loss, bit for bit), must not run those points again, and must
+  // not run a batch beside a remembered bounded point. The column's stiffness line at 5 N m s/rad: its
+  // third point in replay-loss order is the first bounded one, so two threads checking two at a time with
+  // nothing remembered would run the fourth beside it, and nothing later on this line needs the fourth.
+  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
+  const CandidateEffect& column = candidateNamed("steering_compliance");
+  const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
+  const EffectParameter& stiffness = column.params[0];
+  const std::vector<double> start{8000, 5.0, column.params[2].initial};
+  std::vector<double> plain = start;
+  double plain_loss = 0.0;
+  std::size_t plain_loops = 0;
+  {
+    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    objective.requireStability({required});
+    plain_loss = lineSearch(objective, plain, 0, stiffness.lower, stiffness.upper, 13, objective.loss(plain), 2);
+    plain_loops = objective.closedLoopRuns();
+  }
+  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  objective.requireStability({required});
+  const double start_loss = objective.loss(start);
+  const auto order = constrainedScanOrder(objective, start, 0, stiffness.lower, stiffness.upper, 13);
+  ASSERT_EQ(order.size(), 13u);
+  for (std::size_t k = 1; k < order.size(); ++k) {
+    EXPECT_LE(objective.replayLoss(order[k - 1]), objective.replayLoss(order[k])) << "not ordered by replay loss";
+  }
+  std::size_t ahead = 0;  // checked ahead up to the first bounded point, as the refit does
+  for (const auto& point : order) {
+    ++ahead;
+    if (!objective.bounds(point, required).diverged) break;
+  }
+  ASSERT_EQ(ahead, 3u) << "the line's first bounded point moved: the batch beside it is not exercised";
+  const std::size_t before = objective.closedLoopRuns();
+  std::vector<double> theta = start;
+  const double loss = lineSearch(objective, theta, 0, stiffness.lower, stiffness.upper, 13, start_loss, 2);
+  EXPECT_EQ(theta, plain);
+  EXPECT_EQ(loss, plain_loss);
+  EXPECT_FALSE(objective.remembersLoss(order[ahead])) << "a batch ran beside the remembered bounded point";
+  EXPECT_LE(objective.closedLoopRuns() - before + ahead, plain_loops) << "points checked ahead were run again";
+}
+
 TEST(ScoreFit, OnTwoThreadsScoresAsOnOne) {
   // A bounded refit scores its result with the threads the other fits left idle: the training and
   // held-out replays and the uncertainty's p forward steps side by side. The scores and sigmas must be

@@ -68,6 +68,41 @@ TEST(CandidateObjective, ARememberedLossIsTheLossAndARequirementIsPartOfIt) {
   EXPECT_EQ(objective.loss(unbounded), open_loop);
 }
 
+TEST(CandidateObjective, ALossIsRememberedWhenEverythingItIsMadeOfIs) {
+  // A constrained line search takes a point whose loss costs nothing alone, before running a batch beside
+  // it (the bounded refit runs points' closed loops ahead, bounds() and replayLoss(), not loss()). Such a
+  // point is one whose bounds checks under the requirement in force are remembered, up to the first that
+  // diverges, and, if none does, its replay loss; and loss() must then run nothing.
+  const Fixture f;
+  const CandidateEffect& column = candidateNamed("steering_compliance", "wheel_sensor");
+  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  const std::vector<double> bounded{2000.0, 11.16, 0.0458}, unbounded{164265.0, 11.16, 0.0458};
+  const BoundedLoopRequirement r = f.requirement();
+  objective.requireStability({r});
+  EXPECT_FALSE(objective.remembersLoss(bounded));
+  EXPECT_FALSE(objective.remembersLoss(unbounded));
+
+  ASSERT_TRUE(objective.bounds(unbounded, r).diverged) << "the stiff column's closed loop stayed bounded";
+  EXPECT_TRUE(objective.remembersLoss(unbounded)) << "a remembered divergence needs no replay";
+  ASSERT_FALSE(objective.bounds(bounded, r).diverged);
+  EXPECT_FALSE(objective.remembersLoss(bounded)) << "a bounded point's loss is its replay loss, not remembered yet";
+  objective.replayLoss(bounded);
+  EXPECT_TRUE(objective.remembersLoss(bounded));
+
+  const std::size_t loops = objective.closedLoopRuns(), replays = objective.evaluations();
+  EXPECT_EQ(objective.loss(bounded), objective.replayLoss(bounded));
+  EXPECT_GE(objective.loss(unbounded), 1e100);
+  EXPECT_EQ(objective.closedLoopRuns(), loops);
+  EXPECT_EQ(objective.evaluations(), replays) << "a loss said to cost nothing replayed the data";
+
+  // Another requirement is not remembered: the same points must be checked under it.
+  BoundedLoopRequirement shorter = r;
+  shorter.horizon = 0.5 * r.horizon;
+  objective.requireStability({shorter});
+  EXPECT_FALSE(objective.remembersLoss(bounded));
+  EXPECT_FALSE(objective.remembersLoss(unbounded));
+}
+
 TEST(NominalBounds, RemembersTheNominalsLoopPerRequirementAndAnswersAsTheCheckDoes) {
   const Fixture f;
   BoundedLoopRequirement logged = f.requirement();

@@ -141,6 +141,33 @@ TEST(EvaluationBudget, ABoundedRefitWithinItsBudgetIsUnchangedAndOneHeldToAFewCl
   EXPECT_FALSE(stopped.bounded) << "a refit that could not check its result called it bounded";
 }
 
+TEST(HoldStable, OnTwoThreadsIsTheRefitOnOne) {
+  // On two threads the refit runs closed loops ahead (beside a grid's point, beside Brent's minimum and
+  // each bisection step, and the first narrowed line's first points beside the whole-log check): the
+  // objective remembers them, so the refit must end where one thread's does, bit for bit. The column
+  // fitted with too little damping, its closed loop required to stay bounded over the whole 8 s log (the
+  // short-horizon search's result passes the whole-log check here, so what ran beside the check is not
+  // used; LineSearch.UnderAStabilityRequirementPointsCheckedAhead... covers a line that uses it).
+  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
+  const CandidateEffect& column = candidateNamed("steering_compliance");
+  const LogSignals& log = *f.runs[0].log;
+  const std::vector<BoundedLoopRequirement> required{loggedBoundsOverFirstSeconds(f, log.end() - log.start())};
+  const std::vector<double> start{4000.0, 0.5, column.params[2].initial};
+  std::vector<std::vector<double>> found;
+  std::vector<std::size_t> loops;
+  for (int threads : {1, 2}) {
+    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    std::string note;
+    bool bounded = false;
+    found.push_back(holdStable(objective, start, required, &note, &bounded, threads));
+    EXPECT_TRUE(bounded) << note;
+    loops.push_back(objective.closedLoopRuns());
+  }
+  EXPECT_EQ(found[0], found[1]);
+  EXPECT_NE(found[0], start) << "the refit did not move: nothing compared";
+  EXPECT_GT(loops[1], loops[0]) << "two threads ran nothing ahead: the comparison tests nothing";
+}
+
 }  // namespace
 }  // namespace diagnosis
 }  // namespace lane_keeping
