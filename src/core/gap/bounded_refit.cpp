@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <exception>
 
 #include "lane_keeping/common/parallel_for.h"
 
@@ -83,12 +84,16 @@ std::vector<double> holdStable(CandidateObjective& objective, std::vector<double
         checked = true;
         return;
       }
-      const auto [lo, hi] = narrowedRange(objective.effect().params[0], theta[0]);
-      for (const std::vector<double>& point : constrainedScanOrder(objective, theta, 0, lo, hi, search::kSecondRoundGrid)) {
-        if (checked) return;
-        // theta itself (the grid's middle) is the check's; an invalid point's loss needs no closed loop.
-        if (point == theta || !objective.configFor(point).problems().empty()) continue;
-        if (bounded(point) && std::isfinite(objective.replayLoss(point))) return;  // the line's scan ends here
+      try {
+        const auto [lo, hi] = narrowedRange(objective.effect().params[0], theta[0]);
+        for (const std::vector<double>& point : constrainedScanOrder(objective, theta, 0, lo, hi, search::kSecondRoundGrid)) {
+          if (checked) return;
+          // theta itself (the grid's middle) is the check's; an invalid point's loss needs no closed loop.
+          if (point == theta || !objective.configFor(point).problems().empty()) continue;
+          if (bounded(point) && std::isfinite(objective.replayLoss(point))) return;  // the line's scan ends here
+        }
+      } catch (const std::exception&) {
+        // What runs ahead may never be asked for: a failure there is the line's to meet if the line runs.
       }
     });
   } else {
