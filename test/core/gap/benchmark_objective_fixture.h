@@ -12,6 +12,7 @@
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/bounded_loop.h"
 #include "lane_keeping/gap/candidate_effects.h"
+#include "lane_keeping/gap/candidate_objective.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/evaluation.h"
 
@@ -38,6 +39,12 @@ struct BenchmarkObjectiveFixture {
     available = availableSubsystems(runs);
     nominal = evaluate(nullptr, data, available, ReplayOptions{});
   }
+
+  /// `effect`'s objective on the whole log, as fitCandidate builds it (the nominal replays' sigma1).
+  /// Returned as a prvalue: the objective holds a mutex and cannot move.
+  CandidateObjective objective(const CandidateEffect& effect, const ReplayOptions& replay = ReplayOptions{}) const {
+    return CandidateObjective(effect, config, data, replay, nominal.sigma1, available);
+  }
 };
 
 /// The logged bounds as stabilityRequirements sets them (1.5 times the steering range + 0.02 rad, twice
@@ -57,6 +64,19 @@ inline const CandidateEffect& candidateNamed(const std::string& name, const std:
   }
   throw std::runtime_error("no candidate " + name + (form.empty() ? "" : " (" + form + ")"));
 }
+
+/// The column (steering_compliance) on the candidates' small lane change, 8 s at 100 Hz: the bounded
+/// refit's case. With little damping the linear column's closed loop leaves the logged bounds, `required`,
+/// over the log's first `horizon` seconds (the whole log if `horizon` is 0).
+struct ColumnLaneChangeFixture : BenchmarkObjectiveFixture {
+  const CandidateEffect& column = candidateNamed("steering_compliance");
+  const BoundedLoopRequirement required;
+
+  explicit ColumnLaneChangeFixture(double horizon)
+      : BenchmarkObjectiveFixture("steering_compliance-small-lane_change", 8.0, 100.0, 0.6),
+        required(loggedBoundsOverFirstSeconds(
+            *this, horizon > 0.0 ? horizon : runs[0].log->end() - runs[0].log->start())) {}
+};
 
 }  // namespace diagnosis
 }  // namespace lane_keeping

@@ -24,7 +24,7 @@ std::pair<std::vector<std::vector<double>>, std::vector<double>> dampingSearches
   std::vector<std::vector<double>> found;
   std::vector<double> losses;
   for (int threads : {1, 2}) {
-    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    CandidateObjective objective = f.objective(column);
     objective.requireStability({required});
     std::vector<double> theta = start;
     losses.push_back(lineSearch(objective, theta, 1, damping.lower, damping.upper, 13, objective.loss(theta), threads));
@@ -38,7 +38,7 @@ TEST(LineSearch, FindsTheMinimumABruteForceScanOfTheLineFinds) {
   // inside the bounds, log-scaled. The grid (13 points) brackets it, Brent's method refines it.
   const BenchmarkObjectiveFixture f("steering_friction-large-lane_change", 10.0, 100.0, 0.6);
   const CandidateEffect& friction = candidateNamed("steering_friction");
-  CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective objective = f.objective(friction);
   const EffectParameter& p = friction.params[0];
   ASSERT_TRUE(p.log_scale);
   std::vector<double> theta{p.initial, friction.params[1].initial};
@@ -68,7 +68,7 @@ TEST(LineSearch, OnTwoThreadsIsTheSearchOnOne) {
   std::vector<std::vector<double>> found;
   std::vector<double> losses;
   for (int threads : {1, 2}) {
-    CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    CandidateObjective objective = f.objective(friction);
     const EffectParameter& p = friction.params[0];
     std::vector<double> theta{p.initial, friction.params[1].initial};
     losses.push_back(lineSearch(objective, theta, 0, p.lower, p.upper, 13, objective.loss(theta), threads));
@@ -85,16 +85,14 @@ TEST(LineSearch, UnderAStabilityRequirementNoGridPointBeatsIt) {
   // the grid's best. No point of the grid may then have a lower loss than the search's result (each
   // point's loss on a fresh objective, closed loop and all), and one and two threads (checks one and
   // two at a time) must agree bit for bit. Low damping diverges, so both kinds of point are on the line.
-  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
-  const CandidateEffect& column = candidateNamed("steering_compliance");
-  const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
-  const EffectParameter& damping = column.params[1];
-  const std::vector<double> start{4000, 0.5, column.params[2].initial};
-  const auto [found, losses] = dampingSearchesOnOneAndTwoThreads(f, required, start);
+  const ColumnLaneChangeFixture f(3.0);
+  const EffectParameter& damping = f.column.params[1];
+  const std::vector<double> start{4000, 0.5, f.column.params[2].initial};
+  const auto [found, losses] = dampingSearchesOnOneAndTwoThreads(f, f.required, start);
   EXPECT_EQ(found[0], found[1]);
   EXPECT_EQ(losses[0], losses[1]);
-  CandidateObjective fresh(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
-  fresh.requireStability({required});
+  CandidateObjective fresh = f.objective(f.column);
+  fresh.requireStability({f.required});
   int bounded = 0, diverging = 0;
   for (int i = 0; i < 13; ++i) {
     std::vector<double> point = start;
@@ -116,19 +114,17 @@ TEST(LineSearch, UnderAStabilityRequirementFindsTheBoundedMinimumAScanFinds) {
   // this one was before the boundary pass) returned 100 and a loss 0.35 % above the scan's. The search
   // must find the bounded minimum a brute-force scan of the line's constrained loss finds, at most one
   // closed loop per grid point and 1 + 4 per boundary (Brent's replay minimum, the bisection).
-  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
-  const CandidateEffect& column = candidateNamed("steering_compliance");
-  const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
-  const EffectParameter& damping = column.params[1];
-  const std::vector<double> start{4000, 2.0, column.params[2].initial};
-  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
-  objective.requireStability({required});
+  const ColumnLaneChangeFixture f(3.0);
+  const EffectParameter& damping = f.column.params[1];
+  const std::vector<double> start{4000, 2.0, f.column.params[2].initial};
+  CandidateObjective objective = f.objective(f.column);
+  objective.requireStability({f.required});
   std::vector<double> theta = start;
   const double found = lineSearch(objective, theta, 1, damping.lower, damping.upper, 13, objective.loss(theta));
   EXPECT_LE(objective.closedLoopRuns(), 13u + 2u * (1u + 4u));
 
-  CandidateObjective fresh(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
-  fresh.requireStability({required});
+  CandidateObjective fresh = f.objective(f.column);
+  fresh.requireStability({f.required});
   EXPECT_EQ(fresh.loss(theta), fresh.replayLoss(theta)) << "the search's result leaves the bounds";
   EXPECT_EQ(fresh.loss(theta), found);
   const int n = 193;  // 1/16 of the grid's spacing apart
@@ -153,12 +149,10 @@ TEST(LineSearch, UnderAStabilityRequirementTheClosedLoopsRunAheadChangeNothing) 
   // diverging grid point beside Brent's replay minimum). The objective remembers each point, so the
   // search must take one thread's path: the same point and loss, bit for bit, on the line above whose
   // bounded minimum lies on a boundary the search bisects.
-  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
-  const CandidateEffect& column = candidateNamed("steering_compliance");
-  const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
-  const EffectParameter& damping = column.params[1];
-  const std::vector<double> start{4000, 2.0, column.params[2].initial};
-  const auto [found, losses] = dampingSearchesOnOneAndTwoThreads(f, required, start);
+  const ColumnLaneChangeFixture f(3.0);
+  const EffectParameter& damping = f.column.params[1];
+  const std::vector<double> start{4000, 2.0, f.column.params[2].initial};
+  const auto [found, losses] = dampingSearchesOnOneAndTwoThreads(f, f.required, start);
   EXPECT_EQ(found[0], found[1]);
   EXPECT_EQ(losses[0], losses[1]);
   // The result lies between grid points (on the boundary the bisection found), not on the grid.
@@ -173,22 +167,20 @@ TEST(LineSearch, UnderAStabilityRequirementPointsCheckedAheadChangeNothingAndAre
   // not run a batch beside a remembered bounded point. The column's stiffness line at 5 N m s/rad: its
   // third point in replay-loss order is the first bounded one, so two threads checking two at a time with
   // nothing remembered would run the fourth beside it, and nothing later on this line needs the fourth.
-  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
-  const CandidateEffect& column = candidateNamed("steering_compliance");
-  const BoundedLoopRequirement required = loggedBoundsOverFirstSeconds(f, 3.0);
-  const EffectParameter& stiffness = column.params[0];
-  const std::vector<double> start{8000, 5.0, column.params[2].initial};
+  const ColumnLaneChangeFixture f(3.0);
+  const EffectParameter& stiffness = f.column.params[0];
+  const std::vector<double> start{8000, 5.0, f.column.params[2].initial};
   std::vector<double> plain = start;
   double plain_loss = 0.0;
   std::size_t plain_loops = 0;
   {
-    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
-    objective.requireStability({required});
+    CandidateObjective objective = f.objective(f.column);
+    objective.requireStability({f.required});
     plain_loss = lineSearch(objective, plain, 0, stiffness.lower, stiffness.upper, 13, objective.loss(plain), 2);
     plain_loops = objective.closedLoopRuns();
   }
-  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
-  objective.requireStability({required});
+  CandidateObjective objective = f.objective(f.column);
+  objective.requireStability({f.required});
   const double start_loss = objective.loss(start);
   const auto order = constrainedScanOrder(objective, start, 0, stiffness.lower, stiffness.upper, 13);
   ASSERT_EQ(order.size(), 13u);
@@ -198,7 +190,7 @@ TEST(LineSearch, UnderAStabilityRequirementPointsCheckedAheadChangeNothingAndAre
   std::size_t ahead = 0;  // checked ahead up to the first bounded point, as the refit does
   for (const auto& point : order) {
     ++ahead;
-    if (!objective.bounds(point, required).diverged) break;
+    if (!objective.bounds(point, f.required).diverged) break;
   }
   ASSERT_EQ(ahead, 3u) << "the line's first bounded point moved: the batch beside it is not exercised";
   const std::size_t before = objective.closedLoopRuns();
@@ -226,7 +218,7 @@ TEST(ScoreFit, OnTwoThreadsScoresAsOnOne) {
   const std::vector<double> theta{2.0, 0.5};
   std::vector<CandidateFit> fits(2);
   for (int threads : {1, 2}) {
-    CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    CandidateObjective objective = f.objective(friction);
     fits[threads - 1].effect = &friction;
     scoreFit(objective, theta, context, DiagnosisOptions{}, &fits[threads - 1], threads);
   }
@@ -246,7 +238,7 @@ TEST(LeastSquaresFit, CoarseToFineReachesTheOptimumOfAllTheData) {
   // whose search saw all the data.
   const BenchmarkObjectiveFixture f("steering_friction-large-lane_change", 20.0, 100.0, 0.6);
   const CandidateEffect& friction = candidateNamed("steering_friction");
-  CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective objective = f.objective(friction);
 
   const std::vector<double> full = leastSquaresFit(objective, 1);
   const std::vector<double> coarse = leastSquaresFit(objective, 3);
@@ -266,7 +258,7 @@ TEST(Polish, AStepCostsItsReplaysNotALineSearchOfJacobians) {
   // start: 45 replays for one step.
   const BenchmarkObjectiveFixture f("sensing_delay-large-sinusoid", 20.0, 1000.0, 0.6);
   const CandidateEffect& column = candidateNamed("steering_compliance", "motor_sensor");
-  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective objective = f.objective(column);
   const std::vector<double> polished = polish(objective, coordinateFit(objective), 4);
   const std::size_t before = objective.evaluations();
   const std::vector<double> again = polish(objective, polished, 1);

@@ -31,7 +31,7 @@ struct Fixture : BenchmarkObjectiveFixture {
 TEST(CandidateObjective, ARememberedLossIsTheLossAndARequirementIsPartOfIt) {
   const Fixture f;
   const CandidateEffect& column = candidateNamed("steering_compliance", "wheel_sensor");
-  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective objective = f.objective(column);
   // Stiffness, damping, inertia: a softer column than the truth's, and one whose closed loop rings up
   // within half a second (k = 1.6e5 N m/rad against the actuator's 10 kHz PD loop).
   const std::vector<double> bounded{2000.0, 11.16, 0.0458}, unbounded{164265.0, 11.16, 0.0458};
@@ -39,7 +39,7 @@ TEST(CandidateObjective, ARememberedLossIsTheLossAndARequirementIsPartOfIt) {
   const double first = objective.loss(bounded);
   ASSERT_TRUE(std::isfinite(first));
   EXPECT_EQ(objective.loss(bounded), first);
-  CandidateObjective fresh(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective fresh = f.objective(column);
   EXPECT_EQ(fresh.loss(bounded), first);
   // A NaN compares equivalent to every number in the memo's ordering: such a point must be evaluated
   // (an invalid configuration), never given the remembered loss of the point it would match.
@@ -75,7 +75,7 @@ TEST(CandidateObjective, ALossIsRememberedWhenEverythingItIsMadeOfIs) {
   // diverges, and, if none does, its replay loss; and loss() must then run nothing.
   const Fixture f;
   const CandidateEffect& column = candidateNamed("steering_compliance", "wheel_sensor");
-  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective objective = f.objective(column);
   const std::vector<double> bounded{2000.0, 11.16, 0.0458}, unbounded{164265.0, 11.16, 0.0458};
   const BoundedLoopRequirement r = f.requirement();
   objective.requireStability({r});
@@ -130,7 +130,7 @@ TEST(NominalBounds, RemembersTheNominalsLoopPerRequirementAndAnswersAsTheCheckDo
   }
   // stabilityRequirements gives the same requirements and note with it as without it.
   const CandidateEffect& column = candidateNamed("steering_compliance", "wheel_sensor");
-  CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective objective = f.objective(column);
   const std::vector<double> unbounded{164265.0, 11.16, 0.0458};
   std::string note_without, note_with;
   const auto without = stabilityRequirements(objective, unbounded, f.data, &note_without);

@@ -39,7 +39,7 @@ TEST(EvaluationBudget, EachSearchOfAFitStaysWithinItsBudgetOnAShortAndALongLog) 
       const std::size_t p = effect.params.size();
       std::vector<double> unheld;
       {
-        CandidateObjective objective(effect, f.config, f.data, replay, f.nominal.sigma1, f.available);
+        CandidateObjective objective = f.objective(effect, replay);
         if (effect.profile) {
           unheld = coordinateFit(objective);
           EXPECT_LE(objective.evaluations(), fitSearchBudget(p, true).replays);
@@ -55,7 +55,7 @@ TEST(EvaluationBudget, EachSearchOfAFitStaysWithinItsBudgetOnAShortAndALongLog) 
           EXPECT_GT(objective.evaluations(), p) << "the step on all the data replayed nothing: nothing counted";
         }
       }
-      CandidateObjective objective(effect, f.config, f.data, replay, f.nominal.sigma1, f.available);
+      CandidateObjective objective = f.objective(effect, replay);
       std::string note;
       EXPECT_EQ(leastSquaresFit(objective, 3, &note), unheld);
       EXPECT_EQ(note, "");
@@ -66,7 +66,7 @@ TEST(EvaluationBudget, EachSearchOfAFitStaysWithinItsBudgetOnAShortAndALongLog) 
 TEST(EvaluationBudget, ASearchThatSpendsItsBudgetKeepsItsBestPointAndRemembersNothingFalse) {
   const BenchmarkObjectiveFixture f("steering_friction-large-lane_change", 10.0, 100.0, 0.6);
   const CandidateEffect& friction = candidateNamed("steering_friction");
-  CandidateObjective objective(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective objective = f.objective(friction);
   const std::vector<double> start{friction.params[0].initial, friction.params[1].initial};
   EvaluationBudget budget;
   budget.replays = 9;  // the start and 8 of the first line's 13 grid points
@@ -81,7 +81,7 @@ TEST(EvaluationBudget, ASearchThatSpendsItsBudgetKeepsItsBestPointAndRemembersNo
 
   objective.limit({});
   EXPECT_FALSE(objective.budgetSpent());
-  CandidateObjective fresh(friction, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+  CandidateObjective fresh = f.objective(friction);
   // Its true loss once the budget is lifted (the stand-in was not remembered) ...
   EXPECT_EQ(objective.loss(unseen), fresh.loss(unseen));
   // ... and the point kept is the best of those the search could evaluate: the start or a grid point.
@@ -99,13 +99,11 @@ TEST(EvaluationBudget, ASearchThatSpendsItsBudgetKeepsItsBestPointAndRemembersNo
 TEST(EvaluationBudget, ABoundedRefitWithinItsBudgetIsUnchangedAndOneHeldToAFewClosedLoopsStops) {
   // The column fitted with too little damping: its closed loop leaves the logged bounds over the log, and
   // holdStable fits it again under them, as refitBounded does (its budget from refitSearchBudget).
-  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
-  const CandidateEffect& column = candidateNamed("steering_compliance");
-  const LogSignals& log = *f.runs[0].log;
-  const std::vector<BoundedLoopRequirement> required{loggedBoundsOverFirstSeconds(f, log.end() - log.start())};
-  const std::vector<double> start{4000.0, 0.5, column.params[2].initial};
+  const ColumnLaneChangeFixture f(0.0);  // bounds over the whole log
+  const std::vector<BoundedLoopRequirement> required{f.required};
+  const std::vector<double> start{4000.0, 0.5, f.column.params[2].initial};
   {
-    CandidateObjective check(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    CandidateObjective check = f.objective(f.column);
     ASSERT_TRUE(check.bounds(start, required[0]).diverged) << "the start's loop stays bounded: nothing to refit";
   }
   struct Refit {
@@ -115,7 +113,7 @@ TEST(EvaluationBudget, ABoundedRefitWithinItsBudgetIsUnchangedAndOneHeldToAFewCl
     std::string note;
   };
   auto refit = [&](const EvaluationBudget& budget) {
-    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    CandidateObjective objective = f.objective(f.column);
     objective.limit(budget);
     Refit r;
     r.theta = holdStable(objective, start, required, &r.note, &r.bounded, 2);
@@ -148,15 +146,13 @@ TEST(HoldStable, OnTwoThreadsIsTheRefitOnOne) {
   // fitted with too little damping, its closed loop required to stay bounded over the whole 8 s log (the
   // short-horizon search's result passes the whole-log check here, so what ran beside the check is not
   // used; LineSearch.UnderAStabilityRequirementPointsCheckedAhead... covers a line that uses it).
-  const BenchmarkObjectiveFixture f("steering_compliance-small-lane_change", 8.0, 100.0, 0.6);
-  const CandidateEffect& column = candidateNamed("steering_compliance");
-  const LogSignals& log = *f.runs[0].log;
-  const std::vector<BoundedLoopRequirement> required{loggedBoundsOverFirstSeconds(f, log.end() - log.start())};
-  const std::vector<double> start{4000.0, 0.5, column.params[2].initial};
+  const ColumnLaneChangeFixture f(0.0);  // bounds over the whole log
+  const std::vector<BoundedLoopRequirement> required{f.required};
+  const std::vector<double> start{4000.0, 0.5, f.column.params[2].initial};
   std::vector<std::vector<double>> found;
   std::vector<std::size_t> loops;
   for (int threads : {1, 2}) {
-    CandidateObjective objective(column, f.config, f.data, ReplayOptions{}, f.nominal.sigma1, f.available);
+    CandidateObjective objective = f.objective(f.column);
     std::string note;
     bool bounded = false;
     found.push_back(holdStable(objective, start, required, &note, &bounded, threads));
