@@ -27,6 +27,15 @@ namespace replay {
 /// each shooting interval (several of their relaxation times at the benchmark's 15 m/s).
 constexpr double kTireLeadIn = 0.1;
 
+/// Copies `n` states from `from` to `to`: the steering and chassis replays integrate blocks of the model's
+/// state that lie together there and in their own vectors (the steering system's and the front tire's;
+/// both tires'), and copy them in, and their rates out, at every evaluation. Two loops through the
+/// vectors' accessors, for 2-5 values each, were 8 % of the instructions of a motor-side column fit; this
+/// loop, which the compiler turns into a call to memcpy, 5 % fewer in all (callgrind, 2026-11-28).
+inline void copyStates(const double* __restrict from, int n, double* __restrict to) {
+  for (int i = 0; i < n; ++i) to[i] = from[i];
+}
+
 /// Largest RK4 step that resolves a tire's fastest dynamics at `speed`: its relaxation lag
 /// (relaxation length / V), the lumped LuGre transport (~ a / V) or, for the distributed tread, the
 /// transport across one bristle spacing (L / (N - 1) / V: 0.34 ms at 40 bristles and 15 m/s; the

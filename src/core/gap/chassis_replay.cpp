@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "lane_keeping/sim/model_factory.h"
 #include "lane_keeping/gap/replay_shooting.h"
@@ -25,6 +26,10 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   const int n = 5 + front_n + rear_n;
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
   std::size_t hint = 0, speed_hint = 0;
+  // The rear tire's states follow the front's in the model's state (single_track_model.h), as they do in q
+  // after the five chassis states: each evaluation copies them in, and their rates out, as one block.
+  if (rear0 != front0 + front_n) throw std::logic_error("replayChassis: the rear tire's states do not follow the front tire's");
+  const int tire_n = front_n + rear_n;
   // Returns the position of t in the log, for the other channels read at t.
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     imposeLoggedSpeed(model, log, t, &speed_hint);
@@ -36,8 +41,7 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     full[kSigma2] = q[4];
     full[kDelta] = log.at(C::kDelta, here);
     full[kSigma3] = log.at(C::kDeltaRate, here);
-    for (int i = 0; i < front_n; ++i) full[front0 + i] = q[5 + i];
-    for (int i = 0; i < rear_n; ++i) full[rear0 + i] = q[5 + front_n + i];
+    copyStates(q.data() + 5, tire_n, full.data() + front0);
     return here;
   };
   double last_u = config.vehicle.speed;
@@ -56,8 +60,7 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     q_dot[2] = full_dot[kPsi];
     q_dot[3] = sigma_dot[0];
     q_dot[4] = sigma_dot[1];
-    for (int i = 0; i < front_n; ++i) q_dot[5 + i] = full_dot[front0 + i];
-    for (int i = 0; i < rear_n; ++i) q_dot[5 + front_n + i] = full_dot[rear0 + i];
+    copyStates(full_dot.data() + front0, tire_n, q_dot.data() + 5);
     last_u = c.u;
   };
 

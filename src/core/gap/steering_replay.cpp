@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 
 #include "lane_keeping/sim/model_factory.h"
 #include "lane_keeping/gap/replay_shooting.h"
@@ -110,6 +111,10 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
 
   Eigen::VectorXd full = Eigen::VectorXd::Zero(n_full), full_dot = Eigen::VectorXd::Zero(n_full);
   std::size_t hint = 0, torque_hint = 0, speed_hint = 0;
+  // The front tire's states follow the steering system's in the model's state (single_track_model.h), as
+  // they do in q after delta and sigma3: each evaluation copies them in, and their rates out, as one block.
+  if (front0 != steer0 + steer_n) throw std::logic_error("replaySteering: the front tire's states do not follow the steering system's");
+  const int carried = steer_n + front_n;
   // Returns the position of t in the log, for the other channels read at t.
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     imposeLoggedSpeed(model, log, t, &speed_hint);
@@ -118,8 +123,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
     full[kSigma3] = q[1];
     full[kSigma1] = lateralVelocity(t);
     full[kSigma2] = trueYawRate(log, config.sensors, here);
-    for (int i = 0; i < steer_n; ++i) full[steer0 + i] = q[2 + i];
-    for (int i = 0; i < front_n; ++i) full[front0 + i] = q[2 + steer_n + i];
+    copyStates(q.data() + 2, carried, full.data() + steer0);
     return here;
   };
   auto f = [&](double t, const Eigen::VectorXd& q, Eigen::VectorXd& q_dot) {
@@ -133,8 +137,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
     q_dot[0] = q[1];
     // Row 3 of eq 3: J_F (sigma2' + sigma3') = M_F + (transmitted torque), sigma2' from the log.
     q_dot[1] = (tf.aligning_moment + transmitted) / JF - log.at(C::kYawAcceleration, here);
-    for (int i = 0; i < steer_n; ++i) q_dot[2 + i] = full_dot[steer0 + i];
-    for (int i = 0; i < front_n; ++i) q_dot[2 + steer_n + i] = full_dot[front0 + i];
+    copyStates(full_dot.data() + steer0, carried, q_dot.data() + 2);
   };
 
   ReplayTrace trace = makeTrace("delta", log.samples(C::kDelta));

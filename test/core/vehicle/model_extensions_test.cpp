@@ -29,6 +29,35 @@ Eigen::VectorXd genericState(const SingleTrackModel& m) {
   return m.initialState(s);
 }
 
+TEST(ModelExtensions, EachPartsStatesFollowTheLastPartsWhateverTheModels) {
+  // The gap replays copy the steering system's and the front tire's states, and the two tires', as one
+  // block each (replay::copyStates): the layout of single_track_model.h must hold for every tire model,
+  // with and without relaxation, and every steering system.
+  for (const char* tire : {"brush", "lugre_lumped", "lugre_distributed", "magic_formula"}) {
+    for (double relaxation : {0.0, 0.4}) {
+      for (int steering = 0; steering < 4; ++steering) {
+        SimConfig c;
+        c.tire_front.model = c.tire_rear.model = tire;
+        c.tire_front.relaxation_length = relaxation;
+        if (steering & 1) c.steering.column_stiffness = 4000.0;
+        if (steering & 2) {
+          c.steering.friction_model = "lugre";  // a state only with friction to carry
+          c.steering.coulomb_friction = 2.0;
+        }
+        const SingleTrackModel m = createVehicleModel(c);
+        const std::string what = std::string(tire) + ", relaxation " + std::to_string(relaxation) + ", steering " +
+                                 std::to_string(steering);
+        EXPECT_EQ(m.steeringStateOffset(), kRigidStateSize) << what;
+        EXPECT_EQ(m.steering().stateSize(), (steering & 1 ? 2 : 0) + (steering & 2 ? 1 : 0)) << what;
+        EXPECT_EQ(m.frontTireOffset(), m.steeringStateOffset() + m.steering().stateSize()) << what;
+        EXPECT_EQ(m.rearTireOffset(), m.frontTireOffset() + m.frontTire().stateSize()) << what;
+        EXPECT_EQ(m.stateSize(), m.rearTireOffset() + m.rearTire().stateSize()) << what;
+        EXPECT_EQ(m.frontTire().stateSize() - m.rearTire().stateSize(), relaxation > 0.0 ? 2 : 0) << what;
+      }
+    }
+  }
+}
+
 TEST(ModelExtensions, DefaultsAreBeregisModel) {
   const SimConfig c = brushConfig();
   const SingleTrackModel plain = createVehicleModel(c.vehicle, c.tire_front, c.tire_rear);
