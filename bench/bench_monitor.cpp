@@ -16,9 +16,9 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/sim_config.h"
-#include "lane_keeping/gap/gap_log.h"
-#include "lane_keeping/gap/gap_monitor.h"
-#include "lane_keeping/gap/noise_reference.h"
+#include "lane_keeping/gap/evaluation/noise_reference.h"
+#include "lane_keeping/gap/log/gap_log.h"
+#include "lane_keeping/gap/monitor/gap_monitor.h"
 #include "lane_keeping/sim/closed_loop.h"
 
 using namespace lane_keeping;

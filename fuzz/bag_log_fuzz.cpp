@@ -1,4 +1,4 @@
-// Fuzz target: the bag reader lk_gap registers with registerBagLogReader (gap/log_reader.h), readBagLog
+// Fuzz target: the bag reader lk_gap registers with registerBagLogReader (gap/log/log_reader.h), readBagLog
 // (src/nodes/bag_log_reader.h), through readLog as lk_gap --log FILE.bag calls it. Feeds: the input as a
 // .bag file (the seeds are small bags of the suite's topics; libFuzzer mutates them). Asserts: a GapLog
 // of at least 10 rows with t strictly increasing, or an InputError naming the bag; rosbag's own
@@ -6,7 +6,7 @@
 // reader, a crash, a hang or a sanitizer report are findings.
 #include "bag_log_reader.h"
 #include "fuzz_support.h"
-#include "lane_keeping/gap/log_reader.h"
+#include "lane_keeping/gap/log/log_reader.h"
 
 #include <rosbag/bag.h>
 

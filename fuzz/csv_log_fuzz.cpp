@@ -1,5 +1,5 @@
-// Fuzz target: the CSV log reader of the gap diagnosis, readCsvLog (gap/gap_log.h), without and with a
-// log mapping (gap/log_mapping.h), as lk_gap --log FILE.csv [--log-map MAP.yaml] reads them.
+// Fuzz target: the CSV log reader of the gap diagnosis, readCsvLog (gap/log/gap_log.h), without and with a
+// log mapping (gap/log/log_mapping.h), as lk_gap --log FILE.csv [--log-map MAP.yaml] reads them.
 // Feeds: the input as a CSV file; if it holds a line "#--csv", what comes before it is a YAML file whose
 // `log:` section is read by readLogMapping, and the rest is the CSV, read both plain and through the
 // mapping. Asserts: either an InputError/ConfigError naming the file, or a GapLog that keeps the reader's
@@ -8,8 +8,8 @@
 #include <cmath>
 
 #include "fuzz_support.h"
-#include "lane_keeping/gap/gap_log.h"
-#include "lane_keeping/gap/log_mapping.h"
+#include "lane_keeping/gap/log/gap_log.h"
+#include "lane_keeping/gap/log/log_mapping.h"
 
 using namespace lane_keeping;
 

@@ -1,9 +1,9 @@
-// Fuzz target: the gap report reader, readGapReportJson (gap/gap_report.h), as lk_gap_benchmark's scorer
+// Fuzz target: the gap report reader, readGapReportJson (gap/report/gap_report.h), as lk_gap_benchmark's scorer
 // reads report.json files back. Feeds: the input as report.json. Asserts: a GapReport, or an InputError
 // naming the file; any other exception (nlohmann::json's type_error, out_of_range, ...), crash, hang or
 // sanitizer report is a finding.
 #include "fuzz_support.h"
-#include "lane_keeping/gap/gap_report.h"
+#include "lane_keeping/gap/report/gap_report.h"
 
 using namespace lane_keeping;
 

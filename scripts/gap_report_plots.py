@@ -36,7 +36,7 @@ winning effect added (corrected columns all NaN, or absent, when the verdict is 
     yaw_rate_real, yaw_rate_nominal, yaw_rate_corrected [rad/s]
     delta_real, delta_nominal, delta_corrected          front-wheel steering angle [rad]
 
-report.json -- the report (src/core/gap/gap_report.cpp documents the layout). Used here: where.subsystem,
+report.json -- the report (src/core/gap/report/gap_report.cpp documents the layout). Used here: where.subsystem,
     where.subsystems[].name/nrmse, where.windows[] (t0, t1, share; largest first), where.bands[] (f0, f1,
     share), ranking[] (effect, heldout_gap_before, heldout_gap_after, shrink, closed_loop_bounded), verdict (effect, confidence,
     shrink), how_far (before, after). null means "not a number". Without report.json the plots are still

@@ -7,7 +7,7 @@
 /// configured) and the log says so.
 #include <string>
 
-#include "lane_keeping/gap/gap_log.h"
+#include "lane_keeping/gap/log/gap_log.h"
 
 namespace lane_keeping {
 

@@ -7,8 +7,8 @@
 
 #include "lane_keeping/GapStatus.h"
 #include "lane_keeping/gap/diagnosis.h"
-#include "lane_keeping/gap/gap_report.h"
-#include "lane_keeping/gap/gap_run.h"
+#include "lane_keeping/gap/log/gap_run.h"
+#include "lane_keeping/gap/report/gap_report.h"
 #include "ros_config.h"
 #include "topic_names.h"
 

@@ -30,12 +30,12 @@
 #include <ros/callback_queue.h>
 #include <ros/ros.h>
 
+#include "lane_keeping/DesiredSteeringArray.h"
 #include "lane_keeping/Diagnose.h"
 #include "lane_keeping/GapMonitorConfig.h"
-#include "lane_keeping/DesiredSteeringArray.h"
 #include "lane_keeping/SteeringTorqueArray.h"
 #include "lane_keeping/VehicleStateArray.h"
-#include "lane_keeping/gap/gap_monitor.h"
+#include "lane_keeping/gap/monitor/gap_monitor.h"
 #include "loop_io.h"
 
 namespace lane_keeping {

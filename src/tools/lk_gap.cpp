@@ -15,11 +15,11 @@
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/diagnosis.h"
-#include "lane_keeping/gap/gap_log.h"
-#include "lane_keeping/gap/gap_run.h"
-#include "lane_keeping/gap/gap_report_markdown.h"
-#include "lane_keeping/gap/log_mapping.h"
-#include "lane_keeping/gap/log_reader.h"
+#include "lane_keeping/gap/log/gap_log.h"
+#include "lane_keeping/gap/log/gap_run.h"
+#include "lane_keeping/gap/log/log_mapping.h"
+#include "lane_keeping/gap/log/log_reader.h"
+#include "lane_keeping/gap/report/gap_report_markdown.h"
 #include "bag_log_reader.h"
 
 namespace {

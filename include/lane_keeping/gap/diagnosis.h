@@ -27,12 +27,12 @@
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
-#include "lane_keeping/gap/config_change.h"
-#include "lane_keeping/gap/diagnosis_artifacts.h"
 #include "lane_keeping/gap/diagnosis_options.h"
-#include "lane_keeping/gap/gap_log.h"
-#include "lane_keeping/gap/gap_report.h"
-#include "lane_keeping/gap/gap_run.h"
+#include "lane_keeping/gap/evaluation/config_change.h"
+#include "lane_keeping/gap/log/gap_log.h"
+#include "lane_keeping/gap/log/gap_run.h"
+#include "lane_keeping/gap/report/diagnosis_artifacts.h"
+#include "lane_keeping/gap/report/gap_report.h"
 
 namespace lane_keeping {
 

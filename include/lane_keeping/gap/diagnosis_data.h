@@ -10,9 +10,9 @@
 
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/diagnosis_options.h"
-#include "lane_keeping/gap/gap_run.h"
-#include "lane_keeping/gap/log_signals.h"
-#include "lane_keeping/gap/replay_trace.h"
+#include "lane_keeping/gap/log/gap_run.h"
+#include "lane_keeping/gap/log/log_signals.h"
+#include "lane_keeping/gap/replay/replay_trace.h"
 
 namespace lane_keeping {
 namespace diagnosis {

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include "lane_keeping/gap/replay_trace.h"
+#include "lane_keeping/gap/replay/replay_trace.h"
 
 namespace lane_keeping {
 

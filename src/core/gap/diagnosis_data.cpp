@@ -6,7 +6,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
-#include "lane_keeping/gap/subsystem_replay.h"
+#include "lane_keeping/gap/replay/subsystem_replay.h"
 
 namespace lane_keeping {
 namespace diagnosis {

@@ -10,7 +10,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
-#include "lane_keeping/gap/gap_run.h"
+#include "lane_keeping/gap/log/gap_run.h"
 #include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {

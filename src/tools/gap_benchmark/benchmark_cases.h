@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
-#include "lane_keeping/gap/gap_log.h"
-#include "lane_keeping/gap/noise_reference.h"
+#include "lane_keeping/gap/evaluation/noise_reference.h"
+#include "lane_keeping/gap/log/gap_log.h"
 
 namespace lane_keeping {
 

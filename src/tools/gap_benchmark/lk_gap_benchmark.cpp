@@ -35,8 +35,8 @@
 #include "lane_keeping/common/errors.h"
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/diagnosis.h"
-#include "lane_keeping/gap/gap_run.h"
-#include "lane_keeping/gap/gap_report.h"
+#include "lane_keeping/gap/log/gap_run.h"
+#include "lane_keeping/gap/report/gap_report.h"
 
 using namespace lane_keeping;
 using nlohmann::json;

@@ -10,7 +10,7 @@
 
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/config/flat_params.h"
-#include "lane_keeping/gap/gap_run.h"
+#include "lane_keeping/gap/log/gap_run.h"
 
 namespace lane_keeping {
 namespace {

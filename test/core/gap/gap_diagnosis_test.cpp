@@ -6,7 +6,7 @@
 
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/diagnosis.h"
-#include "lane_keeping/gap/log_reader.h"
+#include "lane_keeping/gap/log/log_reader.h"
 
 namespace lane_keeping {
 namespace {

@@ -7,12 +7,12 @@
 #include <cstdlib>
 
 #include "lane_keeping/config/param_readers.h"
-#include "lane_keeping/gap/chassis_replay.h"
 #include "lane_keeping/gap/diagnosis.h"
-#include "lane_keeping/gap/gap_metrics.h"
-#include "lane_keeping/gap/gap_run.h"
-#include "lane_keeping/gap/log_mapping.h"
-#include "lane_keeping/gap/log_reader.h"
+#include "lane_keeping/gap/evaluation/gap_metrics.h"
+#include "lane_keeping/gap/log/gap_run.h"
+#include "lane_keeping/gap/log/log_mapping.h"
+#include "lane_keeping/gap/log/log_reader.h"
+#include "lane_keeping/gap/replay/chassis_replay.h"
 
 namespace lane_keeping {
 namespace {

@@ -1,0 +1,68 @@
+#pragma once
+/// A log of a real (or generated) run, as the gap diagnosis reads it (DESIGN §5).
+///
+/// Only t is required; every other column may be absent (an empty vector): a log of a real car often
+/// lacks the desired steering angle or the torque command, and the diagnosis replays the subsystems
+/// whose inputs and outputs are present (subsystem_replay.h). t is strictly increasing (any, not
+/// necessarily uniform, sampling). Rows holding NaN/Inf in a column the diagnosis uses are skipped and
+/// counted, never silently used.
+#include <cstddef>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "lane_keeping/gap/log/log_mapping.h"
+
+namespace lane_keeping {
+
+struct GapLog {
+  std::string source;  ///< file (and topic set) it came from, for messages and the report
+
+  std::vector<double> t;          ///< [s], strictly increasing
+  std::vector<double> x, y, psi;  ///< measured pose of G in map [m, m, rad]
+  std::vector<double> yaw_rate;   ///< [rad/s]
+  std::vector<double> delta;      ///< measured front-wheel steering angle [rad]
+  std::vector<double> delta_des;  ///< desired steering angle as the tracker produced it [rad]
+  std::vector<double> torque;     ///< steering torque command M_S [N m]
+  std::vector<double> v;          ///< optional: speed [m/s] (empty if absent)
+  std::vector<double> ay;         ///< optional: lateral acceleration at G [m/s^2] (empty if absent)
+  std::vector<double> delta_rate; ///< optional: steering rate [rad/s] (empty if absent)
+
+  /// Schema columns whose units are unknown (a log mapping's `unscaled`, e.g. torque in bus counts):
+  /// present, but not used where their scale matters.
+  std::set<std::string> unscaled;
+  std::string mapping;            ///< the log mapping applied ("" = none)
+
+  std::size_t rows_read = 0;      ///< data rows in the file
+  std::size_t rows_skipped = 0;   ///< rows dropped for NaN/Inf (counted in the report)
+  std::vector<std::string> notes; ///< human-readable remarks (which rows were skipped, and why)
+
+  std::size_t size() const { return t.size(); }
+  /// Whether schema column `name` is present (and, with `scaled`, in known units).
+  bool has(const std::string& name, bool scaled = false) const;
+  bool hasSpeed() const { return !v.empty(); }
+  bool hasLateralAcceleration() const { return !ay.empty(); }
+  bool hasSteeringRate() const { return !delta_rate.empty(); }
+  double duration() const { return t.empty() ? 0.0 : t.back() - t.front(); }
+  /// Median sample spacing [s].
+  double medianStep() const;
+  /// Rows [begin, end) as a new log (for held-out segments).
+  GapLog slice(std::size_t begin, std::size_t end) const;
+};
+
+/// Reads a CSV log with a header row. Column order is free; extra columns are ignored; columns are found
+/// by their schema names or through `mapping` (log_mapping.h), which also scales them.
+/// Throws InputError naming the file and, where it applies, the line and column: missing file,
+/// empty file, no time column, unparsable cell, non-increasing t, fewer than 10 valid rows; and if a
+/// column the mapping names is not in the file.
+/// Rows with NaN/Inf (or empty cells) in a used column are skipped and counted.
+GapLog readCsvLog(const std::string& path, const LogMapping& mapping = {});
+
+/// Writes a GapLog as CSV (the same columns), full precision.
+void writeCsvLog(const std::string& path, const GapLog& log);
+
+/// Converts the rows of a simulation run (sim/log_row.h) into a GapLog (all optional columns set).
+struct LogRow;
+GapLog gapLogFromRows(const std::vector<LogRow>& rows, const std::string& source);
+
+}  // namespace lane_keeping

@@ -1,0 +1,20 @@
+#pragma once
+/// The human-readable gap report: DIR/report.md (GitHub-flavoured Markdown).
+///
+/// Sections, in order: verdict (effect, confidence, held-out shrink, reason, confusable effects) with the
+/// config overlay that adds the effect; ranking table (effect, parameters +- 1 sigma, held-out gap before/after,
+/// shrink, score); where (subsystem table, top time windows, frequency-band shares, operating regimes);
+/// how far (closed-loop and per-subsystem held-out gap before/after); data (logs, rows used/skipped, notes);
+/// plots. Image links to DIR/residuals.png, spectrum.png, overlay.png and ranking.png are written only for the
+/// files that exist when this is called, so run scripts/gap_report_plots.py DIR first.
+/// Non-finite numbers print as "n/a".
+#include <string>
+
+#include "lane_keeping/gap/report/gap_report.h"
+
+namespace lane_keeping {
+
+/// Writes DIR/report.md (creates DIR if needed). Throws InputError if it cannot be written.
+void writeGapReportMarkdown(const std::string& dir, const GapReport& report);
+
+}  // namespace lane_keeping

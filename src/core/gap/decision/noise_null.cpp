@@ -1,0 +1,193 @@
+#include "lane_keeping/gap/decision/noise_null.h"
+
+#include <algorithm>
+#include <memory>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/common/parallel_for.h"
+#include "lane_keeping/gap/evaluation/evaluation.h"
+#include "lane_keeping/gap/evaluation/noise_reference.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+namespace {
+
+/// Each run's noise-free nominal closed loop (nominalReferenceLog), or why it cannot be simulated. The
+/// draws differ in their noise only: the loop was simulated again for each of them, 19 closed loops of
+/// the log's span at the plant's 0.1 ms step where one does (~75 % of a 60 s log's `where` stage).
+struct NominalReference {
+  GapLog log;
+  std::string error;  ///< set when the nominal closed loop diverges before the log's end
+};
+using NominalReferences = std::map<const LogSignals*, NominalReference>;
+
+/// The nominal references of every distinct log of the data sets, on up to `threads` threads.
+NominalReferences nominalReferences(const std::vector<Dataset>& train, const std::vector<Dataset>& held, int threads) {
+  std::vector<const Dataset*> distinct;
+  NominalReferences out;
+  for (const auto* sets : {&held, &train}) {
+    for (const Dataset& set : *sets) {
+      if (out.emplace(set.log.get(), NominalReference{}).second) distinct.push_back(&set);
+    }
+  }
+  parallelFor(distinct.size(), threads, [&](std::size_t k) {
+    NominalReference& r = out.at(distinct[k]->log.get());  // the map's nodes are not moved: one per thread
+    try {
+      r.log = nominalReferenceLog(*distinct[k]->config, *distinct[k]->log);
+    } catch (const LaneKeepingError& e) {
+      r.error = e.what();
+    }
+  });
+  return out;
+}
+
+/// One draw: each run's noise-only reference (its nominal reference with noise drawn from `seed` and the
+/// run's rank), on the data sets' segments.
+struct Draw {
+  bool ok = false;
+  std::vector<Dataset> train, held;
+  std::string note;
+};
+
+Draw referenceDraw(const std::vector<Dataset>& train, const std::vector<Dataset>& held,
+                   const NominalReferences& nominal, unsigned seed) {
+  Draw draw;
+  std::map<const LogSignals*, std::shared_ptr<const LogSignals>> reference;
+  auto referenceOf = [&](const Dataset& set) {
+    auto it = reference.find(set.log.get());
+    if (it != reference.end()) return it->second;
+    const unsigned run_seed = seed + static_cast<unsigned>(reference.size());
+    const NominalReference& loop = nominal.at(set.log.get());
+    if (!loop.error.empty()) throw LaneKeepingError(loop.error);
+    GapLog noisy = loop.log;
+    addSensorNoise(noisy, estimatedNoise(*set.log), run_seed);
+    auto log = std::make_shared<const LogSignals>(std::move(noisy));
+    reference[set.log.get()] = log;
+    return std::shared_ptr<const LogSignals>(log);
+  };
+  try {
+    for (const Dataset& set : held) draw.held.push_back({referenceOf(set), set.config, set.segments});
+    for (const Dataset& set : train) draw.train.push_back({referenceOf(set), set.config, set.segments});
+  } catch (const LaneKeepingError& e) {
+    draw.note = std::string(e.what()) + "; the gap is not corrected for noise propagation";
+    return draw;
+  }
+  draw.ok = true;
+  return draw;
+}
+
+}  // namespace
+
+std::map<std::string, double> NoiseNull::largestHeldExcess() const {
+  std::map<std::string, double> largest;
+  for (const auto& draw : held) {
+    for (const auto& [name, score] : draw) largest[name] = std::max(largest[name], score.excess);
+  }
+  return largest;
+}
+
+std::vector<double> NoiseNull::heldTotals() const {
+  std::vector<double> out;
+  for (const auto& draw : held) out.push_back(totalExcessSquared(draw));
+  return out;
+}
+
+std::vector<double> NoiseNull::trainTotals() const {
+  std::vector<double> out;
+  for (const auto& draw : train) out.push_back(totalExcessSquared(draw));
+  return out;
+}
+
+NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset>& held,
+                    const std::set<std::string>& subsystems, const ReplayOptions& options, int draws, int threads) {
+  struct Result {
+    bool ok = false;
+    std::map<std::string, SubsystemScore> train, held;
+    std::map<std::string, ResidualStructure> structure;
+    std::string note;
+  };
+  std::vector<Result> results(static_cast<std::size_t>(std::max(0, draws)));
+  const NominalReferences nominal = results.empty() ? NominalReferences{} : nominalReferences(train, held, threads);
+  parallelFor(results.size(), threads, [&](std::size_t k) {
+    const Draw draw = referenceDraw(train, held, nominal, 9001u + 1000u * static_cast<unsigned>(k));
+    Result& r = results[k];
+    if (!draw.ok) {
+      r.note = draw.note;
+      return;
+    }
+    const Evaluation held_ev = evaluate(nullptr, draw.held, subsystems, options);
+    r.held = held_ev.scores;
+    r.structure = residualStructures(held_ev, draw.held);
+    if (!draw.train.empty()) r.train = evaluate(nullptr, draw.train, subsystems, options).scores;
+    r.ok = true;
+  });
+  NoiseNull null;
+  for (const Result& r : results) {
+    if (!r.ok) {
+      if (null.notes.empty()) null.notes.push_back(r.note);
+      continue;
+    }
+    null.held.push_back(r.held);
+    null.train.push_back(r.train);
+    null.held_structure.push_back(r.structure);
+  }
+  return null;
+}
+
+double totalExcessSquared(const std::map<std::string, SubsystemScore>& scores) {
+  double sum = 0.0;
+  for (const auto& [name, score] : scores) sum += score.excess * score.excess;
+  return sum;
+}
+
+double monteCarloPValue(double value, const std::vector<double>& draws) {
+  std::size_t at_least = 0;
+  for (double d : draws) {
+    if (d >= value) ++at_least;
+  }
+  return static_cast<double>(1 + at_least) / static_cast<double>(draws.size() + 1);
+}
+
+namespace {
+
+double quantile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const double pos = q * static_cast<double>(v.size() - 1);
+  const std::size_t i = static_cast<std::size_t>(pos);
+  const double w = pos - static_cast<double>(i);
+  return i + 1 < v.size() ? v[i] + w * (v[i + 1] - v[i]) : v[i];
+}
+
+DetectionTest test(const std::map<std::string, SubsystemScore>& scores, const std::vector<double>& draws,
+                   const DiagnosisOptions& options) {
+  DetectionTest out;
+  out.value = totalExcessSquared(scores);
+  out.p_value = monteCarloPValue(out.value, draws);
+  out.null_median = quantile(draws, 0.5);
+  out.null_max = draws.empty() ? 0.0 : *std::max_element(draws.begin(), draws.end());
+  const bool significant = draws.empty() || out.p_value <= options.false_alarm_rate;
+  out.detected = significant && gapOf(scores, {}) >= options.detection_gap;
+  return out;
+}
+
+}  // namespace
+
+GapDetection detectGap(const std::map<std::string, SubsystemScore>& train, const std::map<std::string, SubsystemScore>& held,
+                       const NoiseNull& null, const DiagnosisOptions& options) {
+  GapDetection d;
+  d.draws = null.draws();
+  d.false_alarm_rate = options.false_alarm_rate;
+  d.heldout = test(held, null.heldTotals(), options);
+  d.training = test(train, null.trainTotals(), options);
+  return d;
+}
+
+double heldSpread(const NoiseNull& null) {
+  const std::vector<double> totals = null.heldTotals();
+  if (totals.size() < 2) return 0.0;
+  return quantile(totals, 0.95) - quantile(totals, 0.5);
+}
+
+}  // namespace diagnosis
+}  // namespace lane_keeping

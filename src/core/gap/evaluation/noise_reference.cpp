@@ -1,0 +1,77 @@
+#include "lane_keeping/gap/evaluation/noise_reference.h"
+
+#include <cmath>
+#include <random>
+
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/common/time.h"
+#include "lane_keeping/sim/closed_loop.h"
+
+namespace lane_keeping {
+
+void addSensorNoise(GapLog& g, const SensorNoise& n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  auto add = [&](std::vector<double>& v, double sigma) {
+    for (auto& x : v) x += sigma * unit(rng);
+  };
+  add(g.x, n.position);
+  add(g.y, n.position);
+  add(g.psi, n.heading);
+  add(g.yaw_rate, n.yaw_rate);
+  add(g.delta, n.steering);
+  add(g.delta_rate, n.steering_rate);
+  add(g.torque, n.torque);
+  add(g.ay, n.lateral_acceleration);
+  add(g.v, n.speed);
+}
+
+SensorNoise estimatedNoise(const LogSignals& log) {
+  using C = LogSignals;
+  SensorNoise n;
+  // x and y share one sensor; the larger estimate is the safer one (a curving path inflates neither much).
+  n.position = std::max(log.noise(C::kX), log.noise(C::kY));
+  n.heading = log.noise(C::kPsi);
+  n.yaw_rate = log.noise(C::kYawRate);
+  n.steering = log.noise(C::kDelta);
+  n.torque = log.noise(C::kTorque);
+  n.steering_rate = log.log().hasSteeringRate() ? log.noise(C::kDeltaRate) : 0.0;
+  n.lateral_acceleration = log.log().hasLateralAcceleration() ? log.noise(C::kLateralAcceleration) : 0.0;
+  n.speed = log.log().hasSpeed() ? log.noise(C::kSpeed) : 0.0;
+  return n;
+}
+
+GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log) {
+  SimConfig c = nominal;
+  const double step = log.log().medianStep();
+  c.simulation.log_rate = 1.0 / step;
+  c.simulation.duration = log.end() - log.start() + step;
+  c.tracker.excitation_clock_offset = log.start();  // its times are shifted to the log's below
+  const RunResult run = ClosedLoop(c).run();
+  if (run.diverged()) {
+    throw LaneKeepingError("noise reference for " + log.log().source + ": the nominal closed loop " + run.message);
+  }
+  GapLog out = gapLogFromRows(run.rows, log.log().source + " (noise reference)");
+  for (double& t : out.t) t += log.start();
+  // The reference holds the columns the log holds, in the same units state (a partial log's replays
+  // are the ones its columns allow).
+  const GapLog& real = log.log();
+  for (auto [present, column] : {std::pair<bool, std::vector<double>*>{real.has("x"), &out.x},
+                                 {real.has("y"), &out.y}, {real.has("psi"), &out.psi},
+                                 {real.has("yaw_rate"), &out.yaw_rate}, {real.has("v"), &out.v},
+                                 {real.has("ay"), &out.ay}, {real.has("delta"), &out.delta},
+                                 {real.has("delta_rate"), &out.delta_rate}, {real.has("delta_des"), &out.delta_des},
+                                 {real.has("torque"), &out.torque}}) {
+    if (!present) column->clear();
+  }
+  out.unscaled = real.unscaled;
+  return out;
+}
+
+GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsigned seed) {
+  GapLog out = nominalReferenceLog(nominal, log);
+  addSensorNoise(out, estimatedNoise(log), seed);
+  return out;
+}
+
+}  // namespace lane_keeping

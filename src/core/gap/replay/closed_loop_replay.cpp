@@ -1,0 +1,117 @@
+#include "lane_keeping/gap/replay/closed_loop_replay.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+
+#include "lane_keeping/gap/replay/replay_shooting.h"
+#include "lane_keeping/sim/closed_loop.h"
+
+namespace lane_keeping {
+
+SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double sigma1_0, double duration,
+                                double log_rate) {
+  const double t0 = log.start();
+  InitialState& init = config.simulation.initial;
+  // The simulation starts from the true state; the log holds what the sensors report (config.sensors).
+  const SensorParams& sensors = config.sensors;
+  init.x = log.at(LogSignals::kX, t0);
+  const double bias = sensors.poseBiasScale(init.x);
+  init.y = log.at(LogSignals::kY, t0) - bias * sensors.pose_bias_y;
+  init.psi = log.at(LogSignals::kPsi, t0) - bias * sensors.pose_bias_psi;
+  init.delta = log.at(LogSignals::kDelta, t0);
+  init.sigma2 = log.at(LogSignals::kYawRate, t0) - sensors.yaw_rate_bias;
+  init.sigma3 = log.at(LogSignals::kDeltaRate, t0);
+  init.sigma1 = std::isfinite(sigma1_0) ? sigma1_0 : replay::trueLateralVelocity(log, sensors, t0);
+  config.simulation.duration = std::min(duration, log.end() - t0);
+  config.tracker.excitation_clock_offset = t0;  // the simulation's t = 0 is the log's t0
+  config.simulation.log_rate = log_rate;
+  return config;
+}
+
+ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log, double sigma1_0) {
+  ClosedLoopReplay out;
+  const double t0 = log.start();
+  const double rate = std::min(1000.0, 1.0 / std::max(1e-4, log.log().medianStep()));
+  RunResult run;
+  try {
+    run = ClosedLoop(closedLoopConfigOnLog(config, log, sigma1_0, log.end() - t0, rate)).run();
+  } catch (const std::exception& e) {
+    out.note = std::string("closed-loop replay failed: ") + e.what();
+    return out;
+  }
+  if (run.diverged()) out.note = "closed-loop replay " + run.message;
+  std::vector<double> res_y, res_r, res_d;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < log.times().size(); ++i) {
+    const double ts = log.times()[i] - t0;
+    while (k + 1 < run.rows.size() && run.rows[k + 1].t <= ts) ++k;
+    if (run.rows.empty() || ts > run.end_time) break;
+    const LogRow& a = run.rows[k];
+    const LogRow& b = run.rows[std::min(k + 1, run.rows.size() - 1)];
+    const double w = b.t > a.t ? std::clamp((ts - a.t) / (b.t - a.t), 0.0, 1.0) : 0.0;
+    const double y = a.state.y + w * (b.state.y - a.state.y);
+    const double r = a.state.sigma2 + w * (b.state.sigma2 - a.state.sigma2);
+    const double d = a.state.delta + w * (b.state.delta - a.state.delta);
+    out.t.push_back(log.times()[i]);
+    out.y.push_back(y);
+    out.yaw_rate.push_back(r);
+    out.delta.push_back(d);
+    res_y.push_back(log.samples(LogSignals::kY)[i] - y);
+    res_r.push_back(log.samples(LogSignals::kYawRate)[i] - r);
+    res_d.push_back(log.samples(LogSignals::kDelta)[i] - d);
+  }
+  auto rms = [](const std::vector<double>& v) {
+    double s = 0.0;
+    for (double x : v) s += x * x;
+    return v.empty() ? 0.0 : std::sqrt(s / v.size());
+  };
+  auto spread = [](const std::vector<double>& v) {
+    double m = 0.0;
+    for (double x : v) m += x;
+    m /= std::max<std::size_t>(1, v.size());
+    double s = 0.0;
+    for (double x : v) s += (x - m) * (x - m);
+    return std::max(1e-9, std::sqrt(s / std::max<std::size_t>(1, v.size())));
+  };
+  if (res_y.empty()) return out;
+  const double gy = rms(res_y) / spread(log.samples(LogSignals::kY));
+  const double gr = rms(res_r) / spread(log.samples(LogSignals::kYawRate));
+  const double gd = rms(res_d) / spread(log.samples(LogSignals::kDelta));
+  out.gap = std::sqrt((gy * gy + gr * gr + gd * gd) / 3.0);
+  return out;
+}
+
+LoopDivergence closedLoopDivergence(const SimConfig& config, const LogSignals& log, double sigma1_0, double horizon,
+                                    double max_torque) {
+  LoopDivergence out;
+  RunResult run;
+  const bool torque_bound = std::isfinite(max_torque);
+  try {
+    // Logged sparsely: the divergence monitor's verdict, and the torque if it is bounded.
+    run = ClosedLoop(closedLoopConfigOnLog(config, log, sigma1_0, horizon, torque_bound ? 200.0 : 10.0)).run();
+  } catch (const std::exception& e) {
+    out.diverged = true;
+    out.time = 0.0;
+    out.message = e.what();
+    return out;
+  }
+  if (run.diverged()) {
+    out.diverged = true;
+    out.time = run.end_time;
+    out.message = run.message;
+    return out;
+  }
+  for (const LogRow& row : run.rows) {
+    if (torque_bound && !(std::fabs(row.torque_command) <= max_torque)) {
+      out.diverged = true;
+      out.time = row.t;
+      out.message = "steering torque " + std::to_string(row.torque_command) + " N m at t = " + std::to_string(row.t) +
+                    " s beyond +-" + std::to_string(max_torque) + " N m";
+      break;
+    }
+  }
+  return out;
+}
+
+}  // namespace lane_keeping
