@@ -34,10 +34,18 @@ cd "$WS"
 mkdir -p "$WS/devel/lib/python3/dist-packages" "$WS/devel/lib/pkgconfig"
 JOBS="${LK_JOBS:-$(nproc)}"
 CMAKE_ARGS=(-DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3)
+# ccache (Debian's package, installed by install_deps.sh): a rebuild after a branch switch, a fresh clone or a
+# `git worktree` compiles only what changed. base_dir makes the cache's keys relative to the checkout.
+LAUNCHER=()
+if command -v ccache >/dev/null 2>&1; then
+  export CCACHE_BASEDIR="${CCACHE_BASEDIR:-$(dirname "$REPO_ROOT")}"
+  LAUNCHER=(-DCMAKE_CXX_COMPILER_LAUNCHER=ccache -DCMAKE_C_COMPILER_LAUNCHER=ccache)
+fi
+CMAKE_ARGS+=("${LAUNCHER[@]}")
 if [ "$SANITIZE" = 1 ]; then
   SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
   CMAKE_ARGS=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DPYTHON_EXECUTABLE=/usr/bin/python3 "-DCMAKE_CXX_FLAGS=$SAN"
-              "-DCMAKE_EXE_LINKER_FLAGS=$SAN" "-DCMAKE_SHARED_LINKER_FLAGS=$SAN")
+              "-DCMAKE_EXE_LINKER_FLAGS=$SAN" "-DCMAKE_SHARED_LINKER_FLAGS=$SAN" "${LAUNCHER[@]}")
 fi
 # Always build every target first (tools must not go stale against a rebuilt library), then any
 # extra targets asked for (e.g. tests).

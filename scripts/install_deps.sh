@@ -6,7 +6,7 @@
 set -euo pipefail
 
 PACKAGES=(
-  build-essential cmake
+  build-essential cmake ccache
   ros-core-dev libroscpp-dev catkin ros-message-generation librostest-dev python3-rostest
   libtf2-ros-dev libtf2-eigen-dev libgeometry-msgs-dev libnav-msgs-dev libvisualization-msgs-dev
   librosbag-dev python3-rosbag libnodeletlib-dev libnodeletlib-tools pluginlib-dev rviz
