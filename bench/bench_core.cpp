@@ -1,6 +1,6 @@
 // Benchmark of the core simulator (issue #2): the closed loop's real-time factor (simulated seconds
 // per wall second, one core) for every tire model at dt = 1e-4 s and 1e-5 s, and the cost of one
-// model derivative. Prints a table; numbers go in the README. Not a test: it asserts nothing.
+// model derivative. Prints a table; numbers go in docs/benchmarks.md. Not a test: it asserts nothing.
 //   lk_bench_core [--duration SECONDS] [--repeat N] [--tire MODEL]
 #include <algorithm>
 #include <chrono>

@@ -3,7 +3,7 @@
 and on waypoint lanes of 10, 1,000 and 100,000 points (the same gentle S, sampled ever more densely: maps
 give thousands of points per kilometre), inline in the YAML and, for 100,000, in a CSV file beside it; and the
 cost of 100 s of driving alone (a 120 s run minus a 20 s run: the lane queries without the start-up). Side by side
-in one run, median of 7 (README "Benchmarks"). Given several builds' lk_simulate (before and after a change),
+in one run, median of 7 (docs/benchmarks.md, "Lanes of real length"). Given several builds' lk_simulate (before and after a change),
 runs them alternately and prints a table for each.
 
     /usr/bin/python3 bench/lane_length.py [LK_SIMULATE ...]   (default: build/ws/devel/lib/lane_keeping/lk_simulate)

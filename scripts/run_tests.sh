@@ -21,7 +21,7 @@ LK_FUZZ_MAX_TIME="${LK_FUZZ_MAX_TIME:-30}" bash "$REPO_ROOT/fuzz/run.sh" 20000
 fuzz_status=$?
 # The core and stability gtests under AddressSanitizer + UndefinedBehaviorSanitizer (build-sanitize/). The
 # gap suite runs clean too but takes 23 min more under the sanitizers: run it with
-# `bash scripts/run_sanitized_tests.sh gap` (README "Reliability").
+# `bash scripts/run_sanitized_tests.sh gap` (docs/reliability.md).
 echo "== gtests under AddressSanitizer + UndefinedBehaviorSanitizer: core, stability"
 bash "$REPO_ROOT/scripts/run_sanitized_tests.sh" core stability
 sanitize_status=$?

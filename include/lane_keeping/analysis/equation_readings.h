@@ -2,7 +2,7 @@
 /// Alternative readings of Beregi's printed equations, to find which one puts the lower-level
 /// stability boundary where the paper's Fig 9 value tau2 = 1.9019505 ms sits (just above it). The
 /// default everywhere else is the equations as printed; these readings exist only for that study
-/// (lk_stability readings, README "Stability analysis").
+/// (lk_stability readings, docs/stability.md).
 ///
 /// Each switch edits the linearised plant derived from the model, never a hand-typed matrix: the
 /// generalised forces of eq 3 are recovered as F = M(0) [sigma rows of A] (M of eq 4), edited, and
@@ -30,7 +30,7 @@ struct EquationReading {
   std::vector<std::pair<std::string, double>> overrides;  ///< configuration values, e.g. {"vehicle.steering_mass", 0}
 };
 
-/// The printed equations, each switch alone, and the combinations discussed in the README.
+/// The printed equations, each switch alone, and the combinations discussed in docs/stability.md.
 std::vector<EquationReading> candidateReadings();
 
 /// The plant linearisation under `reading`. Throws ConfigError if the model is outside the

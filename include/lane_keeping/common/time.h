@@ -5,8 +5,8 @@
 /// Why nanoseconds: ROS stamps are integer nanoseconds. If both the in-process runner
 /// and the ROS nodes key their delay lines on the same integers and convert them to
 /// seconds through the same function, a lockstep ROS run reproduces the in-process run
-/// bit for bit. A delay of 1.9019505 ms therefore becomes 1901950 ns (round half to
-/// even is not used: std::llround rounds half away from zero) — documented in README.
+/// bit for bit. A delay of 1.9019505 ms therefore becomes 1901951 ns (round half to
+/// even is not used: std::llround rounds half away from zero) — documented in docs/configuration.md, Conventions.
 #include <cstdint>
 #include <string>
 

@@ -80,7 +80,7 @@ class ParamPrinter : public ParamVisitor {
   std::vector<std::string> open_sections_;
 };
 
-/// Collects (key, unit, range, default, doc) rows: the README parameter table and the ROS
+/// Collects (key, unit, range, default, doc) rows: config/default.yaml, docs/configuration.md and the ROS
 /// parameter adapter use it.
 class ParamCatalog : public ParamVisitor {
  public:

@@ -2,7 +2,7 @@
 /// Self-documenting parameters (the Drake `named_vector` idea): every parameter struct has one
 /// `visit(ParamVisitor&, prefix)` that names each field with its full dotted key, unit, allowed
 /// range and meaning. Reading YAML, reading ROS parameters, range validation, printing the
-/// effective configuration and the README tables all walk the same list, so they cannot drift.
+/// effective configuration and config/default.yaml all walk the same list, so they cannot drift.
 #include <array>
 #include <limits>
 #include <optional>

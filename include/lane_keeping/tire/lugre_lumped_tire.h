@@ -11,7 +11,7 @@
 /// kappa: variable (eq 39, = eq 40 / 43) so that the steady state equals the distributed model, or
 /// constant (Deur §5.1, 1.2). lambda: eq 53 (= eq 54 / 57); lambda2 fixed, lambda1 from eq 56.
 ///
-/// Departure from eq 56 as printed (documented in README): eq 56 evaluates the ratio
+/// Departure from eq 56 as printed (documented in docs/findings.md): eq 56 evaluates the ratio
 /// ((2/L)(1-lambda2) r|w| z~y + K_v v_ry) / ((2/L) r|w| z~y + K_v v_ry) at the *instantaneous* z~y,
 /// which is 0/0 at straight running and changes sign in transients (lambda1 -> +-inf). We evaluate
 /// it at the steady-state z~y = v_ry / (sigma0y |v_r| / g + kappa r|w| / L) of the current slip,

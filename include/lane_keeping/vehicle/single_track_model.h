@@ -13,7 +13,7 @@
 /// constant by the non-holonomic constraint (eq 1); the traction force that does so is the
 /// constraint force and does not appear.
 ///
-/// Eqs 3-5 agree term by term with an independent Gibbs-Appell derivation (README, "Model checks").
+/// Eqs 3-5 agree term by term with an independent Gibbs-Appell derivation (docs/findings.md).
 /// Eq 8 (front) divides the contact-patch term a (sigma2 + sigma3) by V cos(delta); the kinematics
 /// of the leading point give V. We keep the printed form (it differs only at second order in delta).
 #include <cmath>
@@ -214,7 +214,7 @@ class SingleTrackModel {
           b * inv_c * (mF * V + m * s1 * s) * s2 + b * steer_term;
     if (p_.speed_variation != 0.0) {
       // A varying speed makes the constraint of eq 1 rheonomic: extra inertial terms in f1, f2 (our
-      // Gibbs-Appell derivation, README): Vdot (m + m_F) sin(delta) / cos^2(delta) times (1, l - d).
+      // Gibbs-Appell derivation, docs/findings.md): Vdot (m + m_F) sin(delta) / cos^2(delta) times (1, l - d).
       // Vdot = dV/dx x_dot, with x_dot = u cos(psi) - sigma1 sin(psi) and u from row 1 of eq 1.
       const T u = (V - (s1 + b * s2) * s) * inv_c;
       const T x_dot = u * cos(x[kPsi]) - s1 * sin(x[kPsi]);

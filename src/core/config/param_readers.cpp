@@ -141,7 +141,7 @@ void FlatParamReader::choice(const std::string& key, std::string& value, const s
   }
   used_.insert(key);
   if (!entry->value.IsScalar()) {
-    fail(key, "= " + scalarText(entry->value) + ": expected one of the names listed in README");
+    fail(key, "= " + scalarText(entry->value) + ": expected one of the names listed in docs/configuration.md");
     return;
   }
   value = entry->value.Scalar();  // membership checked by RangeChecker (names the allowed values)

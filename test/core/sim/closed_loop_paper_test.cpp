@@ -34,7 +34,7 @@ TEST(ClosedLoopPaper, Fig6Converges) {
 
 TEST(ClosedLoopPaper, Fig7LateralOscillationGrowsAndTheCarSpinsOut) {
   // The paper (Figs 7-8) shows a stable limit cycle. The printed equations with mu = mu0 = 1 give a
-  // growing low-frequency oscillation that saturates the rear tire and ends in a spin (README).
+  // growing low-frequency oscillation that saturates the rear tire and ends in a spin (docs/findings.md).
   RunResult result;
   const RunSummary s = run(loadSimConfig({scenario("fig7.yaml")}), &result);
   ASSERT_TRUE(s.diverged);

@@ -51,14 +51,14 @@ struct GapWhere {
 struct RankedEffect {
   std::string effect;                     ///< one of candidateEffectNames()
   std::string form;                       ///< where the effect sits, for effects with several placements ("" otherwise)
-  std::map<std::string, double> params;   ///< fitted parameters, SI units (names documented in README)
+  std::map<std::string, double> params;   ///< fitted parameters, SI units (names: candidate_effects.h)
   std::map<std::string, double> param_sigma;  ///< 1-sigma uncertainty of each fitted parameter
   std::map<std::string, std::string> config;  ///< the config overlay that adds the effect ("key" -> "value")
   double train_gap_before = 0.0, train_gap_after = 0.0;
   double heldout_gap_before = 0.0;
   double heldout_gap_after = 0.0;
   double shrink = 0.0;                    ///< 1 - heldout_gap_after / heldout_gap_before
-  double score = 0.0;                     ///< evidence used for the verdict (see README)
+  double score = 0.0;                     ///< evidence used for the verdict (docs/gap.md, "Which")
   /// False when the fitted effect makes the closed loop of a training log leave the logged bounds
   /// (the log contradicts it): such a candidate cannot be the verdict and ranks last.
   bool closed_loop_bounded = true;
