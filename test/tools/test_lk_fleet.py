@@ -1,7 +1,7 @@
-"""lk_fleet (scripts/lk_fleet.py) on Dask: a LocalCluster over short logs with a bad one among them, resume
-after a finished and after an interrupted run, and a real dask-scheduler with two dask-workers of which one is
-killed mid-run. Run: /usr/bin/python3 -m pytest -q test/tools/test_lk_fleet.py (CI runs it through catkin's
-run_tests; LK_BIN_DIR names the folder of lk_simulate and lk_gap)."""
+"""lk_fleet (scripts/lk_fleet.py, the package scripts/lk_fleet/) on Dask: a LocalCluster over short logs with a
+bad one among them, resume after a finished and after an interrupted run, and a real dask-scheduler with two
+dask-workers of which one is killed mid-run. Run: /usr/bin/python3 -m pytest -q test/tools/test_lk_fleet.py (CI
+runs it through catkin's run_tests; LK_BIN_DIR names the folder of lk_simulate and lk_gap)."""
 import csv
 import glob
 import json

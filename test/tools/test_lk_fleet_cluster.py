@@ -1,6 +1,6 @@
-"""lk_fleet (scripts/lk_fleet.py) on Dask, end to end with the real tools: a LocalCluster over short logs and a
-bad one; a dask-scheduler with two dask-workers, one SIGKILLed while it holds a task; a run killed midway and
-resumed; a 2 x 2 stability sweep; bad arguments. Run from the repository root:
+"""lk_fleet (scripts/lk_fleet.py, the package scripts/lk_fleet/) on Dask, end to end with the real tools: a
+LocalCluster over short logs and a bad one; a dask-scheduler with two dask-workers, one SIGKILLed while it holds
+a task; a run killed midway and resumed; a 2 x 2 stability sweep; bad arguments. Run from the repository root:
     /usr/bin/python3 -m pytest -q test/tools/test_lk_fleet_cluster.py
 LK_BIN_DIR names the folder of lk_simulate and lk_gap (default: build/ws/devel/lib/lane_keeping)."""
 import csv
@@ -29,7 +29,8 @@ FAST = EFFECTS + " --noise-reference-draws 3"
 pytestmark = pytest.mark.filterwarnings("ignore:make_current is deprecated:DeprecationWarning")
 
 sys.path.insert(0, os.path.join(REPO, "scripts"))
-import lk_fleet  # noqa: E402
+from lk_fleet.results import result_path, task_id  # noqa: E402
+from lk_fleet.sweep import parse_grid  # noqa: E402
 
 
 def simulate(path, *sets):
@@ -197,7 +198,7 @@ def test_a_worker_killed_mid_task_loses_nothing(logs, tmp_path, dask_cluster):
         # Kill the victim while its lk_gap is in the wrapper's sleep: its task has started, not finished.
         killed = wait_for(lambda: [t for pid, t in calls_made(calls) if pid == victim.pid], 120,
                           "a task on the victim worker")[0]
-        assert not os.path.exists(lk_fleet.result_path(out, killed))
+        assert not os.path.exists(result_path(out, killed))
         victim.send_signal(signal.SIGKILL)
         stdout, stderr = run.communicate(timeout=240)
     finally:
@@ -211,7 +212,7 @@ def test_a_worker_killed_mid_task_loses_nothing(logs, tmp_path, dask_cluster):
     # The killed task ran again, on the survivor, and its result is the survivor's.
     made = calls_made(calls)
     assert (survivor.pid, killed) in made
-    with open(lk_fleet.result_path(out, killed)) as f:
+    with open(result_path(out, killed)) as f:
         assert json.load(f)["pid"] == survivor.pid
     # Every task ran to its result once, plus the one rerun: 4 + 1 invocations (the victim started no other).
     assert len(made) == 5 and sorted({t for _, t in made}) == sorted(r["task_id"] for r in rows)
@@ -304,7 +305,7 @@ def test_extra_args_may_not_set_what_the_fleet_sets_per_log(logs, tmp_path):
 
 
 def test_grids_and_task_ids():
-    assert lk_fleet.parse_grid("a.b=0:0.3:0.1") == ("a.b", [0.0, 0.1, 0.2, 0.3])  # stop included, no drift
-    assert lk_fleet.parse_grid("a.b=1,2.5") == ("a.b", [1.0, 2.5])
-    assert lk_fleet.task_id({"x": 1, "y": [2]}) == lk_fleet.task_id({"y": [2], "x": 1})
-    assert lk_fleet.task_id({"x": 1}) != lk_fleet.task_id({"x": 2})
+    assert parse_grid("a.b=0:0.3:0.1") == ("a.b", [0.0, 0.1, 0.2, 0.3])  # stop included, no drift
+    assert parse_grid("a.b=1,2.5") == ("a.b", [1.0, 2.5])
+    assert task_id({"x": 1, "y": [2]}) == task_id({"y": [2], "x": 1})
+    assert task_id({"x": 1}) != task_id({"x": 2})
