@@ -33,6 +33,7 @@ stiffnesses gives (K = m / l (l_r / C_f - l_f / C_r)).
 import argparse
 import math
 import sys
+import zlib
 
 import numpy as np
 
@@ -328,7 +329,6 @@ def yaw_gain(d, wheelbase, steer_ratio, band=(0.1, 0.5), speed_bins=(), block=5.
     A = np.column_stack([s["x_raw"], np.ones_like(r)])
     res["ols_raw"] = tuple(float(u) for u in np.linalg.lstsq(A, r, rcond=None)[0])
     # 3. The estimators on the whole log and in the bins, with circular block bootstrap intervals.
-    rng = np.random.default_rng(seed)
     n_block = max(1, int(round(block / s["dt"])))
     groups = [("all", np.arange(len(t)))]
     acc = longitudinal_acceleration(t, d["v"]) if accel_bins else None
@@ -341,6 +341,7 @@ def yaw_gain(d, wheelbase, steer_ratio, band=(0.1, 0.5), speed_bins=(), block=5.
                 res.setdefault("skipped_bins", []).append(("%g to %g %s" % (lo, hi, unit), len(idx)))
     res["groups"] = []
     for name, idx in groups:
+        rng = np.random.default_rng([seed, zlib.crc32(name.encode())])  # a group's draws: not the others'
         point = yaw_gain_estimates(s, idx, noise)
         boot = {k: [] for k in point}
         for _ in range(draws):
