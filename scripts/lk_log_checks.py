@@ -19,16 +19,17 @@ Uncertainties: standard errors with the effective number of samples n_eff = n (1
 independent.
 
     /usr/bin/python3 scripts/lk_log_checks.py LOG.csv --wheelbase L --steer-ratio N --yaw-gain \
-        [--gyro-column yaw_rate_imu] [--band 0.1:0.5] [--speed-bins 8:14,14:17,17:20] \
-        [--reference-stiffness CF:CR --mass M --cg-to-rear-axle LR]
+        [--gyro-column yaw_rate_imu] [--band 0.1:0.5] [--speed-bins 8:17,17:20] [--accel-bins=-0.3:0.3] \
+        [--reference-stiffness CF:CR --mass M --cg-to-rear-axle LR [--yaw-inertia IZ]]
 
 prints instead the steady-state yaw gain G = r / (V delta / l) (the kinematic yaw rate's share, delta the
 road-wheel angle) by estimators that bracket it when delta is noisy and the loop is closed (see yaw_gain()):
 the yaw-rate bias first (the drift of the integrated yaw rate against each heading reference), then least
 squares and its reverse, Deming regression with the sensors' noise variances, instrumental variables, the
-band-averaged frequency responses H1 and H2, each with a circular block bootstrap interval, in speed bins, and
-the understeer gradient K each implies; with --reference-stiffness, the K and G a set of cornering
-stiffnesses gives (K = m / l (l_r / C_f - l_f / C_r)).
+band-averaged frequency responses H1 and H2, each with a circular block bootstrap interval, on the whole log and
+in bins of speed and of dV/dt, and the understeer gradient K each implies; with --reference-stiffness, the K
+and G a set of cornering stiffnesses gives (K = m / l (l_r / C_f - l_f / C_r)) and, with --yaw-inertia, its
+single-track frequency response over the band. Used in docs/real_car.md (the RAV4 minute).
 """
 import argparse
 import math
@@ -295,6 +296,10 @@ def yaw_gain(d, wheelbase, steer_ratio, band=(0.1, 0.5), speed_bins=(), block=5.
         if c not in d:
             raise ValueError("yaw gain: the log has no column '%s'" % c)
     t, r = d["t"], d["yaw_rate"]
+    nyquist = 0.5 / float(np.median(np.diff(t)))
+    if not 0 < band[0] < band[1] < nyquist:
+        raise ValueError("yaw gain: the band %g-%g Hz is not within 0 and the Nyquist frequency %g Hz" %
+                         (band[0], band[1], nyquist))
     res = {"band": band, "block": block, "draws": draws, "wheelbase": wheelbase, "steer_ratio": steer_ratio}
     # 1. The yaw-rate bias against the heading references.
     refs = {"heading psi": d["psi"]}

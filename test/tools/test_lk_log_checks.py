@@ -233,6 +233,12 @@ class BadInput(unittest.TestCase):
             lk_log_checks.yaw_gain(log, WHEELBASE, STEER_RATIO, draws=5)
         self.assertIn("steering_wheel_angle", str(e.exception))
 
+    def test_a_band_beyond_nyquist_is_refused(self):
+        log, _, _ = synthetic_log(3)
+        with self.assertRaises(ValueError) as e:
+            lk_log_checks.yaw_gain(log, WHEELBASE, STEER_RATIO, band=(0.1, 60.0), draws=5)
+        self.assertIn("Nyquist frequency 50 Hz", str(e.exception))
+
     def test_a_reference_without_mass_is_refused(self):
         path = os.path.join(REPO, "data", "comma2k19", "rav4_segment40.csv")
         err = io.StringIO()
