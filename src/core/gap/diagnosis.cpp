@@ -63,6 +63,16 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
                       const DiagnosisOptions& options, DiagnosisArtifacts* artifacts) {
   if (training.empty()) throw InputError("gap diagnosis: no training log given");
   nominal.validate();
+  // Between 1 and 18 draws at 5 % no p-value reaches the test's level: every gap would be "nothing to
+  // explain", silently. 0 is allowed: no test, the raw excess (said in the notes).
+  const int min_draws = minimumNoiseDraws(options.false_alarm_rate);
+  if (options.noise_reference_draws < 0 ||
+      (options.noise_reference_draws > 0 && options.noise_reference_draws < min_draws)) {
+    throw ConfigError("noise_reference_draws = " + std::to_string(options.noise_reference_draws) +
+                      ": the detection test at " + std::to_string(options.false_alarm_rate) + " needs at least " +
+                      std::to_string(min_draws) + " draws (its smallest p-value is 1 / (draws + 1)); 0 turns the "
+                      "test off");
+  }
   auto say = [&](const std::string& message) {
     if (options.progress) options.progress(message);
   };
@@ -120,9 +130,18 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
         " draws of the nominal closed loop with the logs' noise levels)");
     null = noiseNull(train, held, all, options.replay, options.noise_reference_draws, options.threads);
     report.notes.insert(report.notes.end(), null.notes.begin(), null.notes.end());
+    if (null.draws() < min_draws) {
+      report.notes.push_back("only " + std::to_string(null.draws()) + " of " +
+                             std::to_string(options.noise_reference_draws) +
+                             " noise-only draws ran: the detection test's smallest p-value, 1 / (draws + 1), is above "
+                             "its level, so it cannot detect a gap");
+    }
     reference = null.largestHeldExcess();
     setReference(nominal_train.scores, reference);
     setReference(nominal_held.scores, reference);
+  } else {
+    report.notes.push_back("no noise-only null (noise_reference_draws = 0): no detection test ran, and the gap is "
+                           "the raw excess over the noise floor, not net of a noise reference");
   }
   std::vector<Dataset> everything = train;
   everything.insert(everything.end(), held.begin(), held.end());
