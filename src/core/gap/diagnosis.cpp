@@ -97,6 +97,9 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   const std::vector<RunData> train_runs = prepareRuns(training), held_runs = prepareRuns(heldout);
   std::vector<RunData> runs = train_runs;
   runs.insert(runs.end(), held_runs.begin(), held_runs.end());
+  for (const RunData& run : runs) {
+    if (!run.clock_note.empty()) report.notes.push_back(run.clock_note);
+  }
   // A partial log: the subsystems whose inputs and outputs it lacks are skipped, saying why.
   for (const auto& [name, why] : unavailableSubsystems(runs)) report.skipped_subsystems.push_back({name, why});
   const std::set<std::string> all = availableSubsystems(runs);
