@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "lane_keeping/common/command_line.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/sim/closed_loop.h"
 #include "lane_keeping/vehicle/single_track_model.h"
@@ -66,11 +67,19 @@ int main(int argc, char** argv) {
   double duration = 20.0;
   int repeat = 3;
   std::string only;  // one tire model, e.g. for profiling
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string arg = argv[i];
-    if (arg == "--duration") duration = std::atof(argv[i + 1]);
-    if (arg == "--repeat") repeat = std::atoi(argv[i + 1]);
-    if (arg == "--tire") only = argv[i + 1];
+  // Options read strictly (common/command_line.h): a bad value exits 2 naming it, as the tools do.
+  try {
+    for (int i = 1; i < argc; i += 2) {
+      const std::string arg = argv[i];
+      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+      if (arg == "--duration") duration = numberOption(arg, argv[i + 1], 0.01, 3600.0, "s");
+      else if (arg == "--repeat") repeat = static_cast<int>(wholeNumberOption(arg, argv[i + 1], 1, 1000));
+      else if (arg == "--tire") only = argv[i + 1];
+      else throw UsageError("unknown argument '" + arg + "'");
+    }
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "lk_bench_core: %s\n", e.what());
+    return 2;
   }
   std::printf("lane_keeping core benchmark: Fig 6 closed loop (brush/LuGre tires), %g s simulated, best of %d,\n"
               "one core, log at 1 kHz; distributed LuGre with N = 50 bristles per direction.\n\n",

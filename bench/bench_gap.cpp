@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "gap_benchmark/benchmark_cases.h"
+#include "lane_keeping/common/command_line.h"
 #include "lane_keeping/gap/diagnosis.h"
 
 using namespace lane_keeping;
@@ -28,17 +29,26 @@ int main(int argc, char** argv) {
   std::vector<std::string> effects;
   std::string case_id = "steering_friction-large-lane_change";
   std::size_t coarse_stride = DiagnosisOptions{}.coarse_fit_stride;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string arg = argv[i];
-    if (arg == "--threads") threads = std::atoi(argv[i + 1]);
-    if (arg == "--duration") duration = std::atof(argv[i + 1]);
-    if (arg == "--rate") rates = {std::atof(argv[i + 1])};
-    if (arg == "--case") case_id = argv[i + 1];
-    if (arg == "--coarse-stride") coarse_stride = static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
-    if (arg == "--effects") {
-      std::stringstream list(argv[i + 1]);
-      for (std::string name; std::getline(list, name, ',');) effects.push_back(name);
+  // Options read strictly (common/command_line.h): a bad value exits 2 naming it, as the tools do.
+  try {
+    for (int i = 1; i < argc; i += 2) {
+      const std::string arg = argv[i];
+      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+      if (arg == "--threads") threads = static_cast<int>(wholeNumberOption(arg, argv[i + 1], 1, 256));
+      else if (arg == "--duration") duration = numberOption(arg, argv[i + 1], 1.0, 3600.0, "s");
+      else if (arg == "--rate") rates = {numberOption(arg, argv[i + 1], 1.0, 1e4, "Hz")};
+      else if (arg == "--case") case_id = argv[i + 1];
+      else if (arg == "--coarse-stride") coarse_stride = static_cast<std::size_t>(wholeNumberOption(arg, argv[i + 1], 1, 1000));
+      else if (arg == "--effects") {
+        std::stringstream list(argv[i + 1]);
+        for (std::string name; std::getline(list, name, ',');) effects.push_back(name);
+      } else {
+        throw UsageError("unknown argument '" + arg + "'");
+      }
     }
+  } catch (const UsageError& e) {
+    std::fprintf(stderr, "lk_bench_gap: %s\n", e.what());
+    return 2;
   }
   std::printf("lane_keeping gap diagnosis benchmark: %g s log of %s, %s, %d thread(s), coarse fit stride at least %zu\n\n",
               duration, case_id.c_str(), effects.empty() ? "all 11 candidates" : "selected candidates", threads,

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "lane_keeping/common/command_line.h"
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/evaluation/noise_reference.h"
@@ -48,23 +49,28 @@ int main(int argc, char** argv) {
       }
       return argv[++i];
     };
-    if (arg == "--scenario") scenario = value();
-    else if (arg == "--rate") rate = std::atof(value().c_str());
-    else if (arg == "--duration") duration = std::atof(value().c_str());
-    else if (arg == "--truth") truth.push_back(value());
-    else if (arg == "--set") settings.push_back(value());
-    else if (arg == "--no-noise") noise = false;
-    else if (arg == "--seed") seed = static_cast<unsigned>(std::atoi(value().c_str()));
-    else if (arg == "--quiet") quiet = true;
-    else if (arg == "--sample-period") options.sample_period = std::atof(value().c_str());
-    else if (arg == "--window") options.window = std::atof(value().c_str());
-    else if (arg == "--period") options.period = std::atof(value().c_str());
-    else if (arg == "--max-floor") options.max_floor = std::atof(value().c_str());
-    else if (arg == "--warn") options.warn_excess = std::atof(value().c_str());
-    else if (arg == "--draws") options.reference_draws = std::atoi(value().c_str());
-    else if (arg == "--reference-every") options.reference_every = std::atof(value().c_str());
-    else {
-      std::fprintf(stderr, "lk_bench_monitor: unknown argument %s\n", arg.c_str());
+    try {
+      if (arg == "--scenario") scenario = value();
+      else if (arg == "--rate") rate = numberOption(arg, value(), 1.0, 1e4, "Hz");
+      else if (arg == "--duration") duration = numberOption(arg, value(), 0.1, 1e5, "s");
+      else if (arg == "--truth") truth.push_back(value());
+      else if (arg == "--set") settings.push_back(value());
+      else if (arg == "--no-noise") noise = false;
+      else if (arg == "--seed") seed = static_cast<unsigned>(wholeNumberOption(arg, value(), 0, 4294967295LL));
+      else if (arg == "--quiet") quiet = true;
+      else if (arg == "--sample-period") options.sample_period = numberOption(arg, value(), 1e-6, 10.0, "s");
+      else if (arg == "--window") options.window = numberOption(arg, value(), 1e-3, 1e4, "s");
+      else if (arg == "--period") options.period = numberOption(arg, value(), 1e-3, 1e4, "s");
+      else if (arg == "--max-floor") options.max_floor = numberOption(arg, value(), 0.0, 1e6);
+      else if (arg == "--warn") options.warn_excess = numberOption(arg, value(), 0.0, 1e6);
+      else if (arg == "--draws") options.reference_draws = static_cast<int>(wholeNumberOption(arg, value(), 0, 19));
+      else if (arg == "--reference-every") options.reference_every = numberOption(arg, value(), 0.0, 1e5, "s");
+      else {
+        std::fprintf(stderr, "lk_bench_monitor: unknown argument %s\n", arg.c_str());
+        return 2;
+      }
+    } catch (const UsageError& e) {
+      std::fprintf(stderr, "lk_bench_monitor: %s\n", e.what());
       return 2;
     }
   }

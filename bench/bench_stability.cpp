@@ -9,6 +9,7 @@
 #include <string>
 #include <thread>
 
+#include "lane_keeping/common/command_line.h"
 #include "lane_keeping/analysis/closed_loop_linearization.h"
 #include "lane_keeping/analysis/dde_spectrum.h"
 #include "lane_keeping/analysis/stability_boundary.h"
@@ -35,10 +36,18 @@ int main(int argc, char** argv) {
   mallopt(M_TOP_PAD, 16 << 20);
   mallopt(M_MMAP_THRESHOLD, 64 << 20);
   int n = 100, degree = 0;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string arg = argv[i];
-    if (arg == "--n") n = std::stoi(argv[i + 1]);
-    else if (arg == "--degree") degree = std::stoi(argv[i + 1]);
+  // Options read strictly (common/command_line.h): a bad value exits 2 naming it, as the tools do.
+  try {
+    for (int i = 1; i < argc; i += 2) {
+      const std::string arg = argv[i];
+      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+      if (arg == "--n") n = static_cast<int>(wholeNumberOption(arg, argv[i + 1], 2, 1000));
+      else if (arg == "--degree") degree = static_cast<int>(wholeNumberOption(arg, argv[i + 1], 2, 400));
+      else throw UsageError("unknown argument '" + arg + "'");
+    }
+  } catch (const UsageError& e) {
+    std::cerr << "lk_bench_stability: " << e.what() << "\n";
+    return 2;
   }
   const int cores = static_cast<int>(std::thread::hardware_concurrency());
   std::cout << std::fixed << std::setprecision(3);

@@ -75,14 +75,27 @@ def gap_task(spec):
     return store_result(out, result)
 
 
-def expand_logs(patterns):
-    """Log files matched by the --logs globs (recursive '**'), .csv and .bag only, without duplicates."""
+def expand_logs(patterns, out=None):
+    """Log files matched by the --logs globs (recursive '**'), .csv and .bag only, without duplicates.
+    Files under `out` (the fleet's own reports: their residuals.csv and overlay.csv) are not logs; a
+    symbolic link to nothing is refused by name rather than dropped."""
+    out_real = os.path.realpath(out) if out else None
     logs = []
     for pattern in patterns:
-        matches = [os.path.abspath(p) for p in glob.glob(os.path.expanduser(pattern), recursive=True)
-                   if os.path.isfile(p) and p.endswith(LOG_SUFFIXES)]
+        matches = []
+        for p in glob.glob(os.path.expanduser(pattern), recursive=True):
+            if not p.endswith(LOG_SUFFIXES):
+                continue
+            if os.path.islink(p) and not os.path.exists(p):
+                raise UsageError("--logs", f"'{p}' is a symbolic link to '{os.readlink(p)}', which does not exist")
+            real = os.path.realpath(p)
+            if out_real and (real == out_real or real.startswith(out_real + os.sep)):
+                continue
+            if os.path.isfile(p):
+                matches.append(os.path.abspath(p))
         if not matches:
-            raise UsageError("--logs", f"no log matched '{pattern}' (.csv and .bag files are logs)")
+            raise UsageError("--logs", f"no log matched '{pattern}' (.csv and .bag files are logs; files under --out "
+                                       "are the fleet's own)")
         logs.extend(matches)
     return sorted(set(logs))
 
@@ -140,7 +153,7 @@ def gap_tool_args(args):
 def gap_specs(args, lk_gap):
     """One task per log; the task id hashes the log's path, the nominal and scenario contents and the
     tool's arguments."""
-    logs = expand_logs(args.logs)
+    logs = expand_logs(args.logs, args.out)
     entries = read_scenario_map(args.scenarios) if args.scenarios else []
     tool_args = gap_tool_args(args)
     config = os.path.abspath(args.config)

@@ -1,7 +1,8 @@
 // lk_simulate: in-process closed-loop simulation of the lane-keeping loop.
 //   lk_simulate --config FILE [--config FILE ...] [--set key=value ...] [--change T:key=value ...]
 //               [--tire MODEL] [--out run.csv]
-// Prints the run summary. Exit status: 0 completed, 3 diverged, 2 bad configuration, 1 other error.
+// Prints the run summary. Exit status: 0 completed, 3 diverged, 2 bad arguments or configuration (a lockstep
+// schedule the delays cannot advance included), 1 other error.
 #include <chrono>
 #include <fstream>
 #include <iostream>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/common/file_identity.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/config/timed_change.h"
 #include "lane_keeping/sim/closed_loop.h"
@@ -72,6 +74,13 @@ int main(int argc, char** argv) {
     }
   }
   try {
+    if (!out_path.empty()) {
+      // --out my.yaml beside --config my.yaml replaced the configuration with the log.
+      std::vector<PathArgument> inputs;
+      for (const auto& file : files) inputs.emplace_back("--config", file);
+      refuseOutputAmongInputs({"--out", out_path}, inputs);
+      refuseOutputAmongInputs({"--out", out_path + ".config.yaml"}, inputs);
+    }
     const SimConfig config = loadSimConfig(files, sets);
     if (print_config) {
       config.print(std::cout, true);
@@ -101,8 +110,14 @@ int main(int argc, char** argv) {
       if (!out_path.empty()) std::cout << "log:                    " << out_path << " (" << result.rows.size() << " rows)\n";
     }
     return result.diverged() ? 3 : 0;
+  } catch (const UsageError& e) {
+    std::cerr << "lk_simulate: " << e.what() << "\n";
+    return 2;
   } catch (const ConfigError& e) {
     std::cerr << "lk_simulate: " << e.what() << "\n";
+    return 2;
+  } catch (const ScheduleError& e) {  // the configured step, rates and delays give the loop no lookahead
+    std::cerr << "lk_simulate: invalid configuration: " << e.what() << "\n";
     return 2;
   } catch (const std::exception& e) {
     std::cerr << "lk_simulate: " << e.what() << "\n";

@@ -167,6 +167,23 @@ class Fleet(unittest.TestCase):
         self.assertEqual(sum(r["status"] == "ok" for r in rows), 3)
         self.assertEqual(len(glob.glob(os.path.join(out, "results", "*.json"))), 4)
 
+    def test_its_own_reports_are_not_logs_and_a_dangling_link_is_named(self):
+        # --out inside --logs: the fleet's reports (residuals.csv, overlay.csv) were diagnosed as logs on the
+        # next run; a symbolic link to a missing log was dropped without a word.
+        root = os.path.join(self.tmp.name, "runs")
+        os.makedirs(os.path.join(root, "fleet", "reports", "old"))
+        simulate(os.path.join(root, "a.csv"))
+        with open(os.path.join(root, "fleet", "reports", "old", "residuals.csv"), "w") as f:
+            f.write("t,tracker,actuator,steering,chassis\n0,1,1,1,1\n")
+        run = fleet(os.path.join(root, "fleet"), os.path.join(root, "**", "*.csv"))
+        self.assertEqual(run.returncode, 0, run.stderr)
+        self.assertEqual([os.path.basename(r["log"]) for r in fleet_rows(os.path.join(root, "fleet"))], ["a.csv"])
+        os.symlink(os.path.join(root, "gone.csv"), os.path.join(root, "b.csv"))
+        run = fleet(os.path.join(root, "fleet2"), os.path.join(root, "*.csv"))
+        self.assertEqual(run.returncode, 2)
+        self.assertIn("b.csv' is a symbolic link to", run.stderr)
+        self.assertIn("which does not exist", run.stderr)
+
     def test_bad_arguments_name_the_argument(self):
         run = fleet(os.path.join(self.tmp.name, "none"), os.path.join(self.logs, "*.nothing"))
         self.assertEqual(run.returncode, 2)

@@ -1,6 +1,7 @@
 #pragma once
 /// Typed exceptions of the core. Wrappers (tools, nodes) catch them at the boundary and stop
 /// with the message (nonzero exit, or fatal log + shutdown); the core never clamps silently.
+#include <cstddef>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -20,9 +21,12 @@ struct ConfigProblem {
   std::string message;   ///< e.g. "= -3 kg, must be > 0"
 };
 
-/// Invalid configuration. Carries *all* problems found, not just the first.
+/// Invalid configuration. Carries *all* problems found, not just the first; its message lists the
+/// first kProblemsShown and says how many more there are.
 class ConfigError : public LaneKeepingError {
  public:
+  static constexpr std::size_t kProblemsShown = 20;
+
   explicit ConfigError(std::vector<ConfigProblem> problems);
   explicit ConfigError(const std::string& single_message);
   const std::vector<ConfigProblem>& problems() const { return problems_; }
@@ -40,6 +44,13 @@ class InputError : public LaneKeepingError {
 
 /// A model evaluation produced a non-finite value or left its domain (e.g. |delta| >= pi/2).
 class ModelError : public LaneKeepingError {
+ public:
+  using LaneKeepingError::LaneKeepingError;
+};
+
+/// A command-line argument the tool cannot take (a number that is not one, out of its range, an output
+/// that is one of the inputs): tools print it with their usage and exit with status 2.
+class UsageError : public LaneKeepingError {
  public:
   using LaneKeepingError::LaneKeepingError;
 };

@@ -18,7 +18,8 @@ class FlatParams {
   };
 
   /// Parses and overlays a YAML file. Throws ConfigError naming the file (and line for syntax
-  /// errors) if it is missing, unreadable, malformed, or not a mapping at the top.
+  /// errors) if it is missing, unreadable, not a regular file (a directory, a device), larger than the
+  /// limits of config_text_limits.h, malformed, or not a mapping at the top.
   void overlayFile(const std::string& path);
   /// Overlays YAML text (used for ROS parameter trees and tests); `origin` names it in errors.
   void overlayText(const std::string& yaml_text, const std::string& origin);
@@ -39,6 +40,8 @@ class FlatParams {
 
  private:
   void flatten(const YAML::Node& node, const std::string& prefix, const std::string& origin);
+  /// Removes the entries below `key` ("key.*").
+  void eraseBelow(const std::string& key);
   /// Sets a leaf, replacing any earlier subtree at `key`.
   void setLeaf(const std::string& key, Entry entry);
   /// Stores the entry at key, replacing any there (erase and insert: see flat_params.cpp).

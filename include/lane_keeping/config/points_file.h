@@ -9,7 +9,12 @@
 
 namespace lane_keeping {
 
-/// Reads the points; on failure returns false with `error` naming the file and line.
+/// Largest points file read [bytes] (about 10^7 points).
+constexpr long long kMaxPointsFileBytes = 512LL << 20;
+
+/// Reads the points; on failure returns false with `error` naming the file and line. A UTF-8 byte order
+/// mark before the first line is skipped; a device or a directory is refused, and so is a file or a
+/// pipe of more than kMaxPointsFileBytes.
 bool readPointsCsv(const std::string& path, std::vector<Point2>* points, std::string* error);
 
 /// `path` relative to the directory of the file named in `location` ("dir/file.yaml:12"; "--set" or an

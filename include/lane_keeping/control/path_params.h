@@ -47,8 +47,21 @@ struct PathParams {
   /// found by fuzzing (x = 0 and 3.5e-310 gave a NaN lane). A map's points are centimetres apart or more.
   static constexpr double kMinWaypointSpacing = 1e-3;
 
-  /// Cross-field and shape rules; that every value is finite is RangeChecker's (param_readers.h).
+  /// Cross-field and shape rules; that every value is finite is RangeChecker's (param_readers.h). The
+  /// lane's bends against the car's turning radius are checked with the vehicle (SimConfig::problems).
   void validate(const std::string& prefix, std::vector<ConfigProblem>& problems) const {
+    // The shapes' lengths within the map's extent, as the waypoints' coordinates below.
+    const std::pair<const char*, double> lengths[] = {
+        {"lane_change.start", lane_change_start},   {"lane_change.length", lane_change_length},
+        {"lane_change.offset", lane_change_offset}, {"sinusoid.amplitude", sinusoid_amplitude},
+        {"sinusoid.wavelength", sinusoid_wavelength}, {"sinusoid.start", sinusoid_start}};
+    const bool shape = type == "lane_change" || type == "sinusoid";
+    for (const auto& [key, value] : lengths) {
+      if (shape && std::string(key).rfind(type, 0) == 0 && std::isfinite(value) &&
+          std::fabs(value) > kMaxWaypointCoordinate) {
+        problems.push_back({prefix + key, "", "= " + formatNumber(value) + " m is beyond 1e8 m; check the unit"});
+      }
+    }
     if (type != "waypoints") return;
     if (waypoints.size() < 2) {
       problems.push_back({prefix + "waypoints", "", "needs at least 2 points, got " + std::to_string(waypoints.size())});

@@ -23,6 +23,14 @@ class PathTracker {
   SteeringCommand command(const PoseSample& pose, double t, PathErrors* errors = nullptr) const;
   /// The excitation multisine and its exact rate at time t [rad, rad/s].
   SteeringCommand excitation(double t) const;
+  /// The multisine's sines (empty when the excitation is off): excitation(t) is the sum over them of
+  /// amplitude sin(2 pi frequency t + phase).
+  struct ExcitationComponent {
+    double frequency;  ///< [Hz]
+    double phase;      ///< [rad]
+    double amplitude;  ///< [rad]
+  };
+  std::vector<ExcitationComponent> excitationComponents() const;
 
   const TrackerParams& params() const { return params_; }
   const Path& path() const { return *path_; }

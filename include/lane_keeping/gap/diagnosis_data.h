@@ -22,6 +22,8 @@ namespace diagnosis {
 struct RunData {
   std::shared_ptr<const LogSignals> log;
   std::shared_ptr<const SimConfig> config;
+  /// What estimateExcitationClock found when it did not keep the log's own clock (replay/excitation_clock.h).
+  std::string clock_note;
 };
 
 std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs);

@@ -80,6 +80,13 @@ struct SimulationParams {
                           "/ " + prefix + "step = " + gFormat(duration / step) + " plant steps; at most " +
                               gFormat(kMaxPlantSteps) + " (hours of computing): shorten the run or lengthen the step"});
     }
+    // The plant logs at most one row a step: a higher rate was capped without a word.
+    if (step > 0.0 && log_rate * step > 1.0 + 1e-9) {
+      problems.push_back({prefix + "log_rate", "",
+                          "= " + gFormat(log_rate) + " Hz is above the plant's rate 1 / " + prefix + "step = " +
+                              gFormat(1.0 / step) + " Hz; the log holds at most one row per plant step: lower it "
+                              "or shorten the step"});
+    }
     const double step_ns = step * 1e9;
     if (std::abs(step_ns - 2.0 * std::round(step_ns / 2.0)) > 1e-3) {
       problems.push_back({prefix + "step", "",

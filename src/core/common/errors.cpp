@@ -1,5 +1,6 @@
 #include "lane_keeping/common/errors.h"
 
+#include <algorithm>
 #include <sstream>
 
 namespace lane_keeping {
@@ -14,11 +15,19 @@ ConfigError::ConfigError(const std::string& single_message)
 std::string ConfigError::render(const std::vector<ConfigProblem>& problems) {
   std::ostringstream out;
   out << "invalid configuration (" << problems.size() << (problems.size() == 1 ? " problem" : " problems") << "):";
-  for (const auto& p : problems) {
+  // The first ones, then a count: 100,000 unknown keys printed one by one buried the message (all of
+  // them stay in problems()).
+  const std::size_t shown = std::min(problems.size(), kProblemsShown);
+  for (std::size_t i = 0; i < shown; ++i) {
+    const ConfigProblem& p = problems[i];
     out << "\n  - ";
     if (!p.location.empty()) out << p.location << ": ";
     if (!p.key.empty()) out << p.key << " ";
     out << p.message;
+  }
+  if (shown < problems.size()) {
+    const std::size_t more = problems.size() - shown;
+    out << "\n  ... and " << more << " more " << (more == 1 ? "problem" : "problems") << " not shown";
   }
   return out.str();
 }

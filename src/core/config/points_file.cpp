@@ -9,6 +9,7 @@
 #include <fstream>
 #include <vector>
 
+#include "lane_keeping/common/file_identity.h"
 #include "lane_keeping/common/fresh_memory.h"
 
 namespace lane_keeping {
@@ -37,14 +38,46 @@ bool number(const char** p, const char* end_of_line, double* value) {
   return true;
 }
 
+/// The line as a message shows it: bytes that do not print (a stray BOM, control characters) as \xNN.
+std::string visible(const char* text, const char* end) {
+  std::string out;
+  for (const char* p = text; p < end; ++p) {
+    const auto c = static_cast<unsigned char>(*p);
+    if (c < 0x20 || c >= 0x7f) {
+      char hex[8];
+      std::snprintf(hex, sizeof(hex), "\\x%02X", c);
+      out += hex;
+    } else {
+      out += *p;
+    }
+  }
+  return out;
+}
+
 }  // namespace
 
 bool readPointsCsv(const std::string& path, std::vector<Point2>* points, std::string* error) {
+  // A device (path.waypoints: /dev/zero) was read without end, and a directory as an empty file. A pipe
+  // is read (a lane from another program), bounded below like any file.
+  const std::string why = whyNotRegularFile(path);
+  if (!why.empty() && why != "does not exist" && why.find("pipe") == std::string::npos) {
+    *error = path + ": cannot read it as a points file: it " + why;
+    return false;
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) {
     *error = path + ": cannot open the points file (" + std::strerror(errno) + ")";
     return false;
   }
+  const std::string too_large = path + ": more than " + std::to_string(kMaxPointsFileBytes >> 20) +
+                                " MB; a points file is at most that (about 10^7 points)";
+  in.seekg(0, std::ios::end);
+  if (in && static_cast<long long>(in.tellg()) > kMaxPointsFileBytes) {
+    *error = too_large;
+    return false;
+  }
+  in.clear();
+  in.seekg(0, std::ios::beg);
   points->clear();
   // Room for every line of the file, mapped in one call (fresh_memory.h): growing by doubling wrote each
   // point up to twice and faulted in twice the pages - a third of reading 10^5 points (issue 18). Lines
@@ -72,6 +105,8 @@ bool readPointsCsv(const std::string& path, std::vector<Point2>* points, std::st
   // error otherwise. The line is [text, end), with a '\0' at end.
   auto line = [&](char* text, char* end, int number_of_line) {
     if (end > text && end[-1] == '\r') *--end = '\0';
+    // A UTF-8 byte order mark, as spreadsheet programs write one, before the first line.
+    if (number_of_line == 1 && end - text >= 3 && std::memcmp(text, "\xEF\xBB\xBF", 3) == 0) text += 3;
     const char* p = text;
     while (p < end && (*p == ' ' || *p == '\t')) ++p;
     if (p == end || *p == '#') return true;
@@ -80,7 +115,7 @@ bool readPointsCsv(const std::string& path, std::vector<Point2>* points, std::st
     if (!number(&p, end, &point[0]) || !number(&p, end, &point[1]) || *p != '\0') {
       if (points->empty() && std::isalpha(static_cast<unsigned char>(first))) return true;  // a header
       *error = path + ":" + std::to_string(number_of_line) + ": expected 'x,y' (two finite numbers), got '" +
-               std::string(text, end) + "'";
+               visible(text, end) + "'";
       return false;
     }
     points->push_back(point);
@@ -92,10 +127,16 @@ bool readPointsCsv(const std::string& path, std::vector<Point2>* points, std::st
   std::vector<char> block(1 << 16);
   std::size_t kept = 0;  // bytes of a cut line at the block's start
   int number_of_line = 0;
+  long long total = 0;  // a pipe's size is known only as it is read
   for (;;) {
     if (kept + 1 >= block.size()) block.resize(2 * block.size());  // a line longer than the block
     in.read(block.data() + kept, static_cast<std::streamsize>(block.size() - 1 - kept));  // one byte spare
     const std::size_t got = static_cast<std::size_t>(in.gcount());
+    total += static_cast<long long>(got);
+    if (total > kMaxPointsFileBytes) {
+      *error = too_large;
+      return false;
+    }
     const bool at_end = got == 0;
     char* begin = block.data();
     char* const stop = begin + kept + got;

@@ -1,6 +1,7 @@
 #include "lane_keeping/config/sim_config.h"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "lane_keeping/config/param_readers.h"
@@ -42,6 +43,50 @@ void checkDistributedTireStep(const TireParams& tire, const std::string& prefix,
   }
 }
 
+/// A lane the car cannot follow at any steering angle: its tightest bend must be no tighter than the
+/// car's smallest turning radius, l / tan(delta_max) (single-track geometry, Beregi eq 1 with zero slip),
+/// delta_max being the steering angle at which a run stops as diverged. `sinusoid.wavelength: 1e-9` was
+/// accepted and ended as "spinning out". The sinusoid's curvature reaches A (2 pi / wavelength)^2 (more
+/// during its fade-in); the quintic lane change's 10/sqrt(3) offset / length^2.
+/// Three significant digits, for figures derived in a message (a radius, a bound).
+std::string shortNumber(double value) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.3g", value);
+  return text;
+}
+
+void checkLaneAgainstCar(const PathParams& path, const VehicleParams& vehicle, const DivergenceLimits& limits,
+                         std::vector<ConfigProblem>& problems) {
+  const double max_curvature = std::tan(limits.max_steering_angle) / vehicle.wheelbase;
+  if (!std::isfinite(max_curvature) || !(max_curvature > 0.0)) return;  // the ranges are reported elsewhere
+  const std::string car = "the car turns no tighter than a radius of vehicle.wheelbase / tan(simulation.divergence."
+                          "max_steering_angle) = " + shortNumber(1.0 / max_curvature) + " m";
+  if (path.type == "sinusoid" && path.sinusoid_wavelength > 0.0 && path.sinusoid_amplitude != 0.0) {
+    const double k = 2.0 * M_PI / path.sinusoid_wavelength;
+    const double curvature = std::fabs(path.sinusoid_amplitude) * k * k;
+    if (curvature > max_curvature) {
+      const double shortest = 2.0 * M_PI * std::sqrt(std::fabs(path.sinusoid_amplitude) / max_curvature);
+      problems.push_back({"path.sinusoid.wavelength", "",
+                          "= " + formatNumber(path.sinusoid_wavelength) + " m with path.sinusoid.amplitude = " +
+                              formatNumber(path.sinusoid_amplitude) + " m bends the lane to a radius of " +
+                              shortNumber(1.0 / curvature) + " m; " + car + ": the wavelength must be at least " +
+                              shortNumber(shortest) + " m for this amplitude"});
+    }
+  }
+  if (path.type == "lane_change" && path.lane_change_length > 0.0 && path.lane_change_offset != 0.0) {
+    const double curvature = 10.0 / std::sqrt(3.0) * std::fabs(path.lane_change_offset) /
+                             (path.lane_change_length * path.lane_change_length);
+    if (curvature > max_curvature) {
+      const double shortest = std::sqrt(10.0 / std::sqrt(3.0) * std::fabs(path.lane_change_offset) / max_curvature);
+      problems.push_back({"path.lane_change.length", "",
+                          "= " + formatNumber(path.lane_change_length) + " m with path.lane_change.offset = " +
+                              formatNumber(path.lane_change_offset) + " m bends the lane to a radius of " +
+                              shortNumber(1.0 / curvature) + " m; " + car + ": the length must be at least " +
+                              shortNumber(shortest) + " m for this offset"});
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<ConfigProblem> SimConfig::problems() const {
@@ -64,6 +109,7 @@ std::vector<ConfigProblem> SimConfig::problems() const {
                         "= column needs a compliant column (steering.column_stiffness > 0): with a rigid one the "
                         "motor side is the road wheel"});
   }
+  checkLaneAgainstCar(path, vehicle, simulation.divergence, problems);
   checkDistributedTireStep(tire_front, "tire.front.", vehicle.speed, simulation.step, problems);
   checkDistributedTireStep(tire_rear, "tire.rear.", vehicle.speed, simulation.step, problems);
   return problems;

@@ -45,6 +45,14 @@ SteeringCommand PathTracker::excitation(double t) const {
   return e;
 }
 
+std::vector<PathTracker::ExcitationComponent> PathTracker::excitationComponents() const {
+  std::vector<ExcitationComponent> out;
+  for (std::size_t k = 0; k < excitation_frequency_.size(); ++k) {
+    out.push_back({excitation_frequency_[k], excitation_phase_[k], excitation_amplitude_[k]});
+  }
+  return out;
+}
+
 SteeringCommand PathTracker::command(const PoseSample& pose, double t, PathErrors* errors) const {
   SteeringCommand c = command(pose, errors);
   if (!excitation_frequency_.empty()) {

@@ -63,6 +63,16 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
                       const DiagnosisOptions& options, DiagnosisArtifacts* artifacts) {
   if (training.empty()) throw InputError("gap diagnosis: no training log given");
   nominal.validate();
+  // Between 1 and 18 draws at 5 % no p-value reaches the test's level: every gap would be "nothing to
+  // explain", silently. 0 is allowed: no test, the raw excess (said in the notes).
+  const int min_draws = minimumNoiseDraws(options.false_alarm_rate);
+  if (options.noise_reference_draws < 0 ||
+      (options.noise_reference_draws > 0 && options.noise_reference_draws < min_draws)) {
+    throw ConfigError("noise_reference_draws = " + std::to_string(options.noise_reference_draws) +
+                      ": the detection test at " + std::to_string(options.false_alarm_rate) + " needs at least " +
+                      std::to_string(min_draws) + " draws (its smallest p-value is 1 / (draws + 1)); 0 turns the "
+                      "test off");
+  }
   auto say = [&](const std::string& message) {
     if (options.progress) options.progress(message);
   };
@@ -87,6 +97,9 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   const std::vector<RunData> train_runs = prepareRuns(training), held_runs = prepareRuns(heldout);
   std::vector<RunData> runs = train_runs;
   runs.insert(runs.end(), held_runs.begin(), held_runs.end());
+  for (const RunData& run : runs) {
+    if (!run.clock_note.empty()) report.notes.push_back(run.clock_note);
+  }
   // A partial log: the subsystems whose inputs and outputs it lacks are skipped, saying why.
   for (const auto& [name, why] : unavailableSubsystems(runs)) report.skipped_subsystems.push_back({name, why});
   const std::set<std::string> all = availableSubsystems(runs);
@@ -120,9 +133,18 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
         " draws of the nominal closed loop with the logs' noise levels)");
     null = noiseNull(train, held, all, options.replay, options.noise_reference_draws, options.threads);
     report.notes.insert(report.notes.end(), null.notes.begin(), null.notes.end());
+    if (null.draws() < min_draws) {
+      report.notes.push_back("only " + std::to_string(null.draws()) + " of " +
+                             std::to_string(options.noise_reference_draws) +
+                             " noise-only draws ran: the detection test's smallest p-value, 1 / (draws + 1), is above "
+                             "its level, so it cannot detect a gap");
+    }
     reference = null.largestHeldExcess();
     setReference(nominal_train.scores, reference);
     setReference(nominal_held.scores, reference);
+  } else {
+    report.notes.push_back("no noise-only null (noise_reference_draws = 0): no detection test ran, and the gap is "
+                           "the raw excess over the noise floor, not net of a noise reference");
   }
   std::vector<Dataset> everything = train;
   everything.insert(everything.end(), held.begin(), held.end());

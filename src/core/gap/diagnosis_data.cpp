@@ -6,6 +6,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/gap/replay/excitation_clock.h"
 #include "lane_keeping/gap/replay/subsystem_replay.h"
 
 namespace lane_keeping {
@@ -19,7 +20,12 @@ std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs) {
     if (run.initial_from_log) {
       config = withInitialStateFromLog(config, run.log, log->at(LogSignals::kSigma1, log->start()));
     }
-    out.push_back({std::move(log), std::make_shared<const SimConfig>(std::move(config))});
+    // The identification excitation on the clock the log's delta_des shows, not on the log's t by
+    // assumption: a log whose t was shifted replayed it out of phase (excitation_clock.h).
+    const ExcitationClock clock = estimateExcitationClock(config, *log);
+    config.tracker.excitation_clock_offset += clock.offset;
+    out.push_back({std::move(log), std::make_shared<const SimConfig>(std::move(config)),
+                   clock.note.empty() ? "" : run.log.source + ": " + clock.note});
   }
   return out;
 }

@@ -85,6 +85,15 @@ Nanoseconds ChangeSchedule::gridOf(LoopRole role) const {
 }
 
 void ChangeSchedule::addAll(const std::vector<TimedChange>& list, const std::string& origin) {
+  // A change after the run's end would never take effect: it was dropped without a word.
+  const double end = initial_.simulation.duration;
+  for (const TimedChange& change : list) {
+    if (change.t > end) {
+      refuse(change.key, origin + " '" + change.text() + "'",
+             "at t = " + formatNumber(change.t) + " s is after the run's end (simulation.duration = " +
+                 formatNumber(end) + " s): it would never take effect");
+    }
+  }
   // Equal times are one request: their keys are checked together (both tau2 delays, say, which one
   // at a time could leave a schedule that stalls in between).
   std::vector<TimedChange> sorted = list;
@@ -92,7 +101,17 @@ void ChangeSchedule::addAll(const std::vector<TimedChange>& list, const std::str
   for (std::size_t i = 0; i < sorted.size();) {
     std::vector<std::pair<std::string, std::string>> group;
     std::size_t j = i;
-    for (; j < sorted.size() && sorted[j].t == sorted[i].t; ++j) group.emplace_back(sorted[j].key, sorted[j].value);
+    for (; j < sorted.size() && sorted[j].t == sorted[i].t; ++j) {
+      // One key twice at one time: the later value won and both were reported as changes to it.
+      for (std::size_t k = i; k < j; ++k) {
+        if (sorted[k].key == sorted[j].key) {
+          refuse(sorted[j].key, origin + " '" + sorted[j].text() + "'",
+                 "is changed twice at t = " + formatNumber(sorted[j].t) + " s ('" + sorted[k].text() + "' and '" +
+                     sorted[j].text() + "'): give one value");
+        }
+      }
+      group.emplace_back(sorted[j].key, sorted[j].value);
+    }
     add(sorted[i].t, group, origin);
     i = j;
   }

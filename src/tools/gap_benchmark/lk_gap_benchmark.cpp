@@ -15,7 +15,7 @@
 // candidate would reach, which replay limits and noise keep below 100 %. `score` compares the verdicts
 // with truth.json and prints the confusion matrix, top-1 accuracy, median held-out shrink when right
 // (and the truth model's, where `ceiling` ran), false alarms on no-effect logs and the out-of-list
-// verdicts.
+// verdicts. Exit status (usage()): 0 ok, 2 bad arguments, 4 bad input data, 1 other error.
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -32,6 +32,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "lane_keeping/common/command_line.h"
 #include "lane_keeping/common/errors.h"
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/diagnosis.h"
@@ -47,8 +48,12 @@ void makeDir(const std::string& path) { ::mkdir(path.c_str(), 0755); }
 
 json readJson(const std::string& path) {
   std::ifstream in(path);
-  if (!in) throw InputError(path + ": cannot open");
-  return json::parse(in);
+  if (!in) throw InputError(path + ": cannot open (a directory lk_gap_benchmark generate wrote?)");
+  try {
+    return json::parse(in);
+  } catch (const json::exception& e) {
+    throw InputError(path + ": not valid JSON: " + e.what());
+  }
 }
 
 void writeJson(const std::string& path, const json& j) {
@@ -294,43 +299,60 @@ int score(const std::string& dir) {
 
 }  // namespace
 
+void usage(std::ostream& out) {
+  out << "usage: lk_gap_benchmark run|generate|diagnose|ceiling|score --out/--dir DIR [--family candidates|independent]\n"
+         "                        [--cases SUBSTRING] [--threads N] [--coarse-fit-stride K] [--log-rate HZ]\n"
+         "  run       generate + diagnose + ceiling + score into --out DIR\n"
+         "  generate  the logs, cases.json (no truth) and truth.json into --out DIR (--log-rate: rows per second,\n"
+         "            default 500, at most the plant's 10,000)\n"
+         "  diagnose, ceiling, score   on --dir DIR, as generate wrote it\n"
+         "  --threads N (1-256, default 2), --coarse-fit-stride K (1-1000, default 3)\n"
+         "exit status: 0 ok, 2 bad arguments (an unknown command, option or family, a value that is not a number\n"
+         "in its range, an option without its value), 4 bad input data (a directory generate did not write),\n"
+         "1 other error\n";
+}
+
 int main(int argc, char** argv) {
-  if (argc < 2) {
-    std::cerr << "usage: lk_gap_benchmark run|generate|diagnose|ceiling|score --out/--dir DIR [--family candidates|independent] [--cases SUBSTRING] [--threads N] [--coarse-fit-stride K]\n";
-    return 2;
+  if (argc < 2 || std::string(argv[1]) == "--help" || std::string(argv[1]) == "-h") {
+    usage(argc < 2 ? std::cerr : std::cout);
+    return argc < 2 ? 2 : 0;
   }
   const std::string command = argv[1];
   std::string dir, filter, family = "candidates";
   int threads = 2;
   std::size_t coarse_fit_stride = DiagnosisOptions{}.coarse_fit_stride;
   double log_rate = 500.0;
-  for (int i = 2; i + 1 < argc; i += 2) {
-    const std::string arg = argv[i];
-    if (arg == "--out" || arg == "--dir") dir = argv[i + 1];
-    else if (arg == "--cases") filter = argv[i + 1];
-    else if (arg == "--family") family = argv[i + 1];
-    else if (arg == "--threads") threads = std::atoi(argv[i + 1]);
-    else if (arg == "--log-rate") log_rate = std::atof(argv[i + 1]);
-    else if (arg == "--coarse-fit-stride") coarse_fit_stride =
-        static_cast<std::size_t>(std::max(1, std::atoi(argv[i + 1])));
-    else {
-      std::cerr << "lk_gap_benchmark: unknown argument '" << arg << "'\n";
-      return 2;
-    }
-  }
-  if (dir.empty()) {
-    std::cerr << "lk_gap_benchmark: --out/--dir DIR is required\n";
-    return 2;
-  }
   try {
+    static const std::set<std::string> commands{"run", "generate", "diagnose", "ceiling", "score"};
+    if (!commands.count(command)) throw UsageError("unknown command '" + command + "'");
+    for (int i = 2; i < argc; i += 2) {
+      const std::string arg = argv[i];
+      if (i + 1 >= argc) throw UsageError(arg + " needs a value");
+      const std::string value = argv[i + 1];
+      if (arg == "--out" || arg == "--dir") dir = value;
+      else if (arg == "--cases") filter = value;
+      else if (arg == "--family") family = value;
+      else if (arg == "--threads") threads = static_cast<int>(wholeNumberOption(arg, value, 1, 256));
+      else if (arg == "--log-rate") log_rate = numberOption(arg, value, 1.0, 1e4, "Hz");
+      else if (arg == "--coarse-fit-stride") coarse_fit_stride = static_cast<std::size_t>(wholeNumberOption(arg, value, 1, 1000));
+      else throw UsageError("unknown argument '" + arg + "'");
+    }
+    if (dir.empty()) throw UsageError("--out/--dir DIR is required");
+    familyCases(family);  // an unknown family is a bad argument, before any work
     if (command == "generate" || command == "run") generate(dir, family, filter, log_rate);
     if (command == "diagnose" || command == "run") diagnose(dir, filter, threads, coarse_fit_stride);
     if (command == "ceiling" || command == "run") ceiling(dir, filter, threads);
     if (command == "score" || command == "run") return score(dir);
-    if (command != "generate" && command != "diagnose" && command != "ceiling") {
-      std::cerr << "lk_gap_benchmark: unknown command '" << command << "'\n";
-      return 2;
-    }
+  } catch (const UsageError& e) {
+    std::cerr << "lk_gap_benchmark: " << e.what() << "\n";
+    usage(std::cerr);
+    return 2;
+  } catch (const ConfigError& e) {
+    std::cerr << "lk_gap_benchmark: " << e.what() << "\n";
+    return 2;
+  } catch (const InputError& e) {
+    std::cerr << "lk_gap_benchmark: " << e.what() << "\n";
+    return 4;
   } catch (const std::exception& e) {
     std::cerr << "lk_gap_benchmark: " << e.what() << "\n";
     return 1;

@@ -33,9 +33,14 @@ namespace {
 using namespace lane_keeping;
 using namespace lane_keeping::stability_cli;
 
+/// Spectra a scan of `steps` intervals computes: one per step and the bisection's and secant's (at most
+/// about 60; stability_boundary.h).
+double scanSpectra(int steps) { return steps + 61.0; }
+
 int commandCritical(const Args& a, const SimConfig& c) {
   const auto start = std::chrono::steady_clock::now();
   const SpectrumOptions so = spectrumOptions(a, 24, 10);
+  checkBudget(a, systemOf(a, c), so.degree, scanSpectra(a.steps), 1, 0, "--degree and --steps");
   const ClosedLoopLinearization lin = linearizeClosedLoop(c);
   const Spectrum here = computeSpectrum(systemOf(a, c), so);
   ScanOptions scan;
@@ -70,6 +75,7 @@ int commandCritical(const Args& a, const SimConfig& c) {
 
 int commandRoots(const Args& a, const SimConfig& c) {
   const SpectrumOptions so = spectrumOptions(a, 24, 10);
+  checkBudget(a, systemOf(a, c), so.degree, 1, 1, 0, "--degree");
   const ClosedLoopLinearization lin = linearizeClosedLoop(c);
   const Spectrum s = computeSpectrum(systemOf(a, c), so);
   printJson(json{{"equations", a.reading.empty() ? "printed" : a.reading},
@@ -84,6 +90,7 @@ int commandRoots(const Args& a, const SimConfig& c) {
 
 int commandBoundary(const Args& a, const SimConfig& c) {
   if (a.param.empty() || std::isnan(a.from) || std::isnan(a.to)) badArguments("boundary needs --param KEY --from A --to B");
+  if (a.from == a.to) badArguments("--from and --to are both " + std::to_string(a.from) + ": the scan needs two ends");
   const ConfigParameterInfo info = configParameterInfo(a.param);
   ScanOptions scan;
   scan.start = a.from;
@@ -92,6 +99,7 @@ int commandBoundary(const Args& a, const SimConfig& c) {
   scan.geometric = !a.uniform;
   scan.spectrum = spectrumOptions(a, 24, 10);
   if (scan.geometric && !(a.from > 0 && a.to > 0)) badArguments("a geometric scan needs --from, --to > 0 (or --uniform)");
+  checkBudget(a, systemOf(a, c), scan.spectrum.degree, scanSpectra(a.steps), 1, 0, "--degree and --steps");
   const Crossing cross = findFirstCrossing(familyOf(a, c, a.param), scan);
   json j{{"param", a.param}, {"unit", info.unit}, {"equations", a.reading.empty() ? "printed" : a.reading},
          {"found", cross.found},
@@ -132,6 +140,8 @@ int commandReadings(const Args& a, const SimConfig& c) {
   scan.end = a.tau2_max;
   scan.steps = a.steps;
   scan.spectrum = spectrumOptions(a, 24, 10);
+  checkBudget(a, systemOf(a, c), scan.spectrum.degree, scanSpectra(a.steps) * candidateReadings().size(), 1, 0,
+              "--degree and --steps");
   json rows = json::array();
   double printed = NAN;
   for (const auto& reading : candidateReadings()) {
@@ -173,6 +183,8 @@ int main(int argc, char** argv) {
     if (args.command == "fig4") return commandFig4(args, config);
     if (args.command == "fig5") return commandFig5(args, config);
     badArguments("unknown command '" + args.command + "'");
+  } catch (const UsageError& e) {
+    badArguments(e.what());
   } catch (const ConfigError& e) {
     std::cerr << "lk_stability: " << e.what() << "\n";
     return 2;

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <filesystem>
+#include <thread>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -12,6 +14,7 @@
 #include "lane_keeping/analysis/config_parameter.h"
 #include "lane_keeping/analysis/equation_readings.h"
 #include "lane_keeping/analysis/stability_chart.h"
+#include "lane_keeping/common/child_process.h"
 #include "lane_keeping/common/errors.h"
 
 namespace lane_keeping {
@@ -27,7 +30,8 @@ ChartAxis parseAxis(const std::string& spec, const std::string& what) {
   for (std::string part; std::getline(in, part, ':');) parts.push_back(part);
   if (parts.size() != 4) badArguments(what + " '" + spec + "' must be KEY:MIN:MAX:N");
   configParameterInfo(parts[0]);
-  return ChartAxis::linear(parts[0], parseNumber(parts[1], what), parseNumber(parts[2], what), parseInt(parts[3], what, 2));
+  return ChartAxis::linear(parts[0], parseNumber(parts[1], what), parseNumber(parts[2], what),
+                           parseInt(parts[3], what + " N", 2, 1000000));
 }
 
 struct Layer {
@@ -71,6 +75,14 @@ int writeChart(const Args& a, const SimConfig& base, const ChartSpec& spec, cons
   }
   const std::vector<double> panel_values = spec.panels.key.empty() ? std::vector<double>{NAN} : spec.panels.values;
   const std::vector<double> series_values = spec.series.key.empty() ? std::vector<double>{NAN} : spec.series.values;
+  {
+    // The whole chart's cost, before its first point (stability_budget.h).
+    const double points = static_cast<double>(spec.x.values.size()) * static_cast<double>(spec.y.values.size());
+    const int threads = a.threads > 0 ? a.threads : std::max(1, static_cast<int>(std::thread::hardware_concurrency()));
+    const std::string option = a.command == "chart" ? "--x, --y N and --degree" : "--n and --degree";
+    checkBudget(a, systemOf(a, base), options.spectrum.degree,
+                points * static_cast<double>(panel_values.size() * series_values.size()), threads, points, option);
+  }
   std::ofstream csv(prefix + ".csv");
   if (!csv) throw InputError("cannot write " + prefix + ".csv");
   csv << "panel,series,x,y,abscissa,frequency_hz,unstable_roots,stable,contour_field\n";
@@ -115,9 +127,11 @@ int writeChart(const Args& a, const SimConfig& base, const ChartSpec& spec, cons
   std::cerr << "lk_stability: wrote " << prefix << ".csv and " << prefix << ".json (" << points << " points, " << seconds << " s)\n";
   if (!a.plot) return 0;
   const std::string script = std::string(LANE_KEEPING_SOURCE_DIR) + "/scripts/plot_stability.py";
-  const std::string command = std::string(kPython) + " '" + script + "' '" + prefix + ".json'";
-  if (std::system(command.c_str()) != 0) {
-    std::cerr << "lk_stability: plotting failed (" << command << "); the CSV and JSON are written\n";
+  // Its argument vector, no shell: a prefix with a quote in it is a name like any other.
+  const ChildResult plot = runChild({kPython, script, prefix + ".json"});
+  if (!plot.ok()) {
+    std::cerr << "lk_stability: plotting failed (" << kPython << " " << script << " " << prefix
+              << ".json: " << plot.failure() << "); the CSV and JSON are written\n";
     return 1;
   }
   std::cerr << "lk_stability: wrote " << prefix << ".png\n";
@@ -126,7 +140,9 @@ int writeChart(const Args& a, const SimConfig& base, const ChartSpec& spec, cons
 
 std::string outputDir(const Args& a) {
   if (a.out.empty()) badArguments(a.command + " needs --out DIR");
-  if (std::system(("mkdir -p '" + a.out + "'").c_str()) != 0) throw InputError("cannot create " + a.out);
+  std::error_code ec;
+  std::filesystem::create_directories(a.out, ec);
+  if (ec) throw InputError("--out " + a.out + ": cannot create the directory (" + ec.message() + ")");
   return a.out;
 }
 
@@ -162,6 +178,7 @@ int commandFig4(const Args& a, SimConfig c) {
   setConfigNumber(centre, "tracker.k_y", 0.01);
   ScanOptions scan;
   scan.end = a.tau2_max;
+  if (!(scan.end > scan.start)) badArguments("--tau2-max must exceed 1e-5 s");
   const Crossing cross = findFirstCrossing(familyOf(a, centre, "tau2"), scan);
   if (!cross.found) throw LaneKeepingError("fig4: no critical tau2 at k_psi = 0.5, k_y = 0.01: " + cross.reason);
   const double tc = cross.parameter;

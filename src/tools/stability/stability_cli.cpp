@@ -1,11 +1,18 @@
 #include "stability_cli.h"
 
 #include <cmath>
+#include <algorithm>
 #include <cstdlib>
 #include <iostream>
+#include <sstream>
 
 #include "lane_keeping/analysis/config_parameter.h"
 #include "lane_keeping/analysis/equation_readings.h"
+#include "lane_keeping/analysis/stability_budget.h"
+#include "lane_keeping/analysis/stability_chart.h"
+#include "lane_keeping/common/command_line.h"
+#include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/param_readers.h"
 
 namespace lane_keeping {
 namespace stability_cli {
@@ -34,6 +41,8 @@ void usage(std::ostream& out) {
          "  --n N             grid points per axis for fig3-5 (default 100)\n"
          "  --threads T       worker threads for charts (default: all cores)\n"
          "  --title TEXT      chart title;  --no-plot  CSV and JSON only\n"
+         "  --time-budget H   refuse work estimated to take longer than H hours (default 4; the estimate is\n"
+         "                    printed above a minute, docs/reliability.md)\n"
          "  --reading NAME    use an alternative reading of the paper's equations (see `readings`)\n"
          "  KEY is a numeric configuration key (lk_simulate --print-config) or tau2.\n";
 }
@@ -47,19 +56,41 @@ void usage(std::ostream& out) {
 
 double parseNumber(const std::string& text, const std::string& what) {
   try {
-    std::size_t used = 0;
-    const double v = std::stod(text, &used);
-    if (used != text.size() || !std::isfinite(v)) throw std::invalid_argument(text);
-    return v;
-  } catch (const std::exception&) {
-    badArguments(what + ": '" + text + "' is not a finite number");
+    return numberOption(what, text, -1.7976931348623157e308, 1.7976931348623157e308);
+  } catch (const UsageError& e) {
+    badArguments(e.what());
   }
 }
 
-int parseInt(const std::string& text, const std::string& what, int min) {
-  const double v = parseNumber(text, what);
-  if (v != std::round(v) || v < min) badArguments(what + ": '" + text + "' must be a whole number >= " + std::to_string(min));
-  return static_cast<int>(v);
+int parseInt(const std::string& text, const std::string& what, int min, int max) {
+  try {
+    return static_cast<int>(wholeNumberOption(what, text, min, max));
+  } catch (const UsageError& e) {
+    badArguments(e.what());
+  }
+}
+
+void checkBudget(const Args& a, const LinearDelaySystem& system, int degree, double spectra, int threads,
+                 double points, const std::string& option) {
+  const SpectrumCost one = spectrumCost(system, degree);
+  const double workers = std::max(1, threads);
+  const double bytes = workers * one.bytes + points * sizeof(ChartPoint) + 50e6;
+  const double seconds = spectra * one.seconds / workers;
+  std::ostringstream estimate;
+  estimate << formatNumber(spectra) << (spectra == 1 ? " spectrum" : " spectra") << " of order " << one.order
+           << " (degree " << degree << " per delay line)" << (points > 0 ? ", " + formatNumber(points) + " chart points" : "")
+           << ": about " << formatDuration(seconds) << " on " << workers << (workers == 1 ? " thread" : " threads")
+           << " and " << formatBytes(bytes) << " of memory";
+  const double memory = physicalMemoryBytes();
+  if (memory > 0.0 && bytes > 0.8 * memory) {
+    badArguments(option + ": " + estimate.str() + ", more than this machine's " + formatBytes(memory) +
+                 "; lower it");
+  }
+  if (seconds > a.time_budget_hours * 3600.0) {
+    badArguments(option + ": " + estimate.str() + ", more than --time-budget " + formatNumber(a.time_budget_hours) +
+                 " h; lower it or raise --time-budget");
+  }
+  if (seconds > 60.0) std::cerr << "lk_stability: note: " << estimate.str() << "\n";
 }
 
 Args parseArgs(int argc, char** argv) {
@@ -86,12 +117,19 @@ Args parseArgs(int argc, char** argv) {
       const std::string seconds = value();
       a.sets.push_back("delays.desired_steering_to_actuator=" + seconds);
       a.sets.push_back("delays.steering_angle_to_actuator=" + seconds);
-    } else if (arg == "--degree") a.degree = parseInt(value(), "--degree", 2);
-    else if (arg == "--count") a.count = parseInt(value(), "--count", 1);
-    else if (arg == "--n") a.n = parseInt(value(), "--n", 2);
-    else if (arg == "--threads") a.threads = parseInt(value(), "--threads", 1);
-    else if (arg == "--steps") a.steps = parseInt(value(), "--steps", 1);
+    } else if (arg == "--degree") a.degree = parseInt(value(), "--degree", 2, 100000);
+    else if (arg == "--count") a.count = parseInt(value(), "--count", 1, 10000);
+    else if (arg == "--n") a.n = parseInt(value(), "--n", 2, 1000000);
+    else if (arg == "--threads") a.threads = parseInt(value(), "--threads", 1, 1024);
+    else if (arg == "--steps") a.steps = parseInt(value(), "--steps", 1, 10000000);
     else if (arg == "--tau2-max") a.tau2_max = parseNumber(value(), "--tau2-max");
+    else if (arg == "--time-budget") {
+      try {
+        a.time_budget_hours = numberOption(arg, value(), 0.0, 1e4, "h");
+      } catch (const UsageError& e) {
+        badArguments(e.what());
+      }
+    }
     else if (arg == "--out") a.out = value();
     else if (arg == "--x") a.x = value();
     else if (arg == "--y") a.y = value();

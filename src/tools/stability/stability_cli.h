@@ -22,6 +22,7 @@ struct Args {
   std::vector<std::string> files, sets;
   int degree = 0, count = 6, n = 100, threads = 0, steps = 300;
   double tau2_max = 0.05;
+  double time_budget_hours = 4.0;  ///< --time-budget: refuse work estimated to take longer
   std::string out, x, y, series, panels, title, param, reading;
   double from = NAN, to = NAN;
   bool uniform = false, plot = true;
@@ -31,7 +32,7 @@ void usage(std::ostream& out);
 /// Prints the message and the usage to stderr and exits with status 2.
 [[noreturn]] void badArguments(const std::string& message);
 double parseNumber(const std::string& text, const std::string& what);
-int parseInt(const std::string& text, const std::string& what, int min);
+int parseInt(const std::string& text, const std::string& what, int min, int max);
 Args parseArgs(int argc, char** argv);
 
 json rootJson(Complex r, bool refined = true);
@@ -40,6 +41,13 @@ json ddeJson(const ClosedLoopLinearization& lin, const Spectrum* spectrum, int d
 json pointJson(const SimConfig& c);
 SpectrumOptions spectrumOptions(const Args& a, int default_degree, int seeds);
 void printJson(const json& j);
+
+/// The budget check before the work (stability_budget.h): `spectra` spectra of `system` at `degree` on
+/// `threads` threads, `points` chart points held. Exits 2 (badArguments) naming `option` and the
+/// estimate if they need more memory than the machine has or more time than --time-budget; prints the
+/// estimate when it exceeds a minute.
+void checkBudget(const Args& a, const LinearDelaySystem& system, int degree, double spectra, int threads,
+                 double points, const std::string& option);
 
 /// The loop's delay system: the printed equations, or --reading.
 LinearDelaySystem systemOf(const Args& a, const SimConfig& c);

@@ -46,6 +46,11 @@ NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset
 /// T = sum over subsystems of excess^2.
 double totalExcessSquared(const std::map<std::string, SubsystemScore>& scores);
 
+/// The fewest draws with which the Monte Carlo test can reject at `false_alarm_rate`: its smallest
+/// p-value is 1 / (B + 1), so B >= ceil(1 / alpha) - 1 (19 at 5 %). With fewer, every gap is "nothing to
+/// explain": `--noise-reference-draws 5` turned a steering-friction log's verdict into `unexplained`.
+int minimumNoiseDraws(double false_alarm_rate);
+
 /// (1 + #{d in draws: d >= value}) / (draws.size() + 1); 1 without draws.
 double monteCarloPValue(double value, const std::vector<double>& draws);
 

@@ -14,7 +14,9 @@
 
 namespace lane_keeping {
 
-/// Writes DIR/report.md (creates DIR if needed). Throws InputError if it cannot be written.
-void writeGapReportMarkdown(const std::string& dir, const GapReport& report);
+/// Writes DIR/report.md (creates DIR if needed). Throws InputError if it cannot be written. `shown_dir`
+/// is the directory the text names (where the report will be read: a staging directory is moved there,
+/// report_directory.h); "" = DIR.
+void writeGapReportMarkdown(const std::string& dir, const GapReport& report, const std::string& shown_dir = "");
 
 }  // namespace lane_keeping

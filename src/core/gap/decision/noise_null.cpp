@@ -1,6 +1,7 @@
 #include "lane_keeping/gap/decision/noise_null.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "lane_keeping/common/errors.h"
@@ -172,6 +173,14 @@ DetectionTest test(const std::map<std::string, SubsystemScore>& scores, const st
 }
 
 }  // namespace
+
+int minimumNoiseDraws(double false_alarm_rate) {
+  if (!(false_alarm_rate > 0.0 && false_alarm_rate < 1.0)) {
+    throw ConfigError("false_alarm_rate = " + std::to_string(false_alarm_rate) + " must be in (0, 1)");
+  }
+  // The small tolerance keeps 1 / 0.05 = 20.000000000000004 from asking for 20.
+  return static_cast<int>(std::ceil(1.0 / false_alarm_rate - 1e-9)) - 1;
+}
 
 GapDetection detectGap(const std::map<std::string, SubsystemScore>& train, const std::map<std::string, SubsystemScore>& held,
                        const NoiseNull& null, const DiagnosisOptions& options) {

@@ -1,5 +1,6 @@
 #include "lane_keeping/gap/evaluation/noise_reference.h"
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 
@@ -44,9 +45,13 @@ SensorNoise estimatedNoise(const LogSignals& log) {
 GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log) {
   SimConfig c = nominal;
   const double step = log.log().medianStep();
-  c.simulation.log_rate = 1.0 / step;
+  // At most a row per plant step (SimulationParams::validate): a log sampled faster than the plant steps
+  // is compared with the reference at the plant's rate.
+  c.simulation.log_rate = std::min(1.0 / step, 1.0 / c.simulation.step);
   c.simulation.duration = log.end() - log.start() + step;
-  c.tracker.excitation_clock_offset = log.start();  // its times are shifted to the log's below
+  // The simulation's t = 0 is the log's start (its times are shifted to the log's below); the excitation
+  // runs on the log's t plus the run's own clock offset (excitation_clock.h).
+  c.tracker.excitation_clock_offset += log.start();
   const RunResult run = ClosedLoop(c).run();
   if (run.diverged()) {
     throw LaneKeepingError("noise reference for " + log.log().source + ": the nominal closed loop " + run.message);

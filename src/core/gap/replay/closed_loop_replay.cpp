@@ -24,8 +24,10 @@ SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double 
   init.sigma3 = log.at(LogSignals::kDeltaRate, t0);
   init.sigma1 = std::isfinite(sigma1_0) ? sigma1_0 : replay::trueLateralVelocity(log, sensors, t0);
   config.simulation.duration = std::min(duration, log.end() - t0);
-  config.tracker.excitation_clock_offset = t0;  // the simulation's t = 0 is the log's t0
-  config.simulation.log_rate = log_rate;
+  // The simulation's t = 0 is the log's t0; the excitation runs on the log's t plus the run's own clock
+  // offset (excitation_clock.h).
+  config.tracker.excitation_clock_offset += t0;
+  config.simulation.log_rate = std::min(log_rate, 1.0 / config.simulation.step);  // a row per plant step at most
   return config;
 }
 

@@ -275,7 +275,7 @@ void writeData(std::ostream& out, const GapReport& r) {
   out << "\n";
 }
 
-void writePlots(std::ostream& out, const std::string& dir) {
+void writePlots(std::ostream& out, const std::string& dir, const std::string& shown_dir) {
   static const std::vector<std::pair<std::string, std::string>> plots{
       {"residuals.png", "Normalised residual per subsystem against time (top windows shaded)"},
       {"spectrum.png", "Residual spectra and band shares"},
@@ -287,7 +287,7 @@ void writePlots(std::ostream& out, const std::string& dir) {
     if (fs::is_regular_file(fs::path(dir) / p.first, ec)) present.push_back(&p);
   out << "## Plots\n\n";
   if (present.empty()) {
-    out << "No plots (run `/usr/bin/python3 scripts/gap_report_plots.py " << dir << "`).\n";
+    out << "No plots (run `/usr/bin/python3 scripts/gap_report_plots.py " << shown_dir << "`).\n";
     return;
   }
   for (const auto* p : present) out << "### " << p->second << "\n\n![" << p->second << "](" << p->first << ")\n\n";
@@ -295,7 +295,7 @@ void writePlots(std::ostream& out, const std::string& dir) {
 
 }  // namespace
 
-void writeGapReportMarkdown(const std::string& dir, const GapReport& report) {
+void writeGapReportMarkdown(const std::string& dir, const GapReport& report, const std::string& shown_dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (ec) throw InputError(dir + ": cannot create report directory: " + ec.message());
@@ -308,7 +308,7 @@ void writeGapReportMarkdown(const std::string& dir, const GapReport& report) {
   writeWhere(out, report);
   writeHowFar(out, report);
   writeData(out, report);
-  writePlots(out, dir);
+  writePlots(out, dir, shown_dir.empty() ? dir : shown_dir);
 
   std::ofstream file(path, std::ios::binary);
   if (!file) throw InputError(path + ": cannot open for writing");
