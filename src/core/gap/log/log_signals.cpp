@@ -183,7 +183,9 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   if (!log_.yaw_rate.empty()) values_[kYawAcceleration] = smoothedDerivative(t, log_.yaw_rate, windows.steering, 1);
   if (!log_.x.empty()) values_[kXDot] = smoothedDerivative(t, log_.x, windows.position, 1);
   if (!log_.y.empty()) values_[kYDot] = smoothedDerivative(t, log_.y, windows.position, 1);
-  if (pose) {
+  if (log_.hasLateralVelocity()) {
+    values_[kSigma1] = log_.vy;  // measured (an INS, an optical sensor): not differentiated from the pose
+  } else if (pose) {
     values_[kSigma1].resize(t.size());
     for (std::size_t i = 0; i < t.size(); ++i) {
       values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
@@ -207,7 +209,8 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   };
   noise_[kDeltaRate] = log_.hasSteeringRate() ? fourthDifferenceNoise(values_[kDeltaRate])
                                               : derivativeNoise(noise_[kDelta], windows.steering);
-  noise_[kSigma1] = derivativeNoise(std::max(noise_[kX], noise_[kY]), windows.position);
+  noise_[kSigma1] = log_.hasLateralVelocity() ? fourthDifferenceNoise(log_.vy)
+                                              : derivativeNoise(std::max(noise_[kX], noise_[kY]), windows.position);
   if (!log_.v.empty()) {
     const std::vector<double> v = smoothedDerivative(t, log_.v, windows.position, 0);
     double mean = 0.0;
