@@ -75,6 +75,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     for (const GapRun& run : *runs) {
       const GapLog& log = run.log;
       (runs == &training ? report.logs : report.heldout).push_back(log.source);
+      if (!log.t.empty()) report.logs_t0[log.source] = log.t.front();
       report.rows_used += log.size();
       report.rows_skipped += log.rows_skipped;
       for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
