@@ -88,6 +88,9 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   const std::vector<RunData> train_runs = prepareRuns(training), held_runs = prepareRuns(heldout);
   std::vector<RunData> runs = train_runs;
   runs.insert(runs.end(), held_runs.begin(), held_runs.end());
+  for (const RunData& run : runs) {  // what is odd about each log (log/input_checks.h)
+    for (const InputCheck& c : run.input_checks) report.input_checks.push_back({c.log, c.channel, c.kind, c.detail, c.t0, c.t1});
+  }
   // A partial log: the subsystems whose inputs and outputs it lacks are skipped, saying why.
   for (const auto& [name, why] : unavailableSubsystems(runs)) report.skipped_subsystems.push_back({name, why});
   const std::set<std::string> all = availableSubsystems(runs);
