@@ -124,6 +124,20 @@ TEST(RealLogDiagnosis, TimeInMillisecondsIsRefusedBeforeTheNullSimulatesHours) {
     EXPECT_NE(what.find("`log: time: {unit: ms}`"), std::string::npos) << what;
   }
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 10.0);
+  // A short one (0.5 s read as 500 s at 0.1 Hz) is not refused for its span, but no replay can run at that
+  // rate: the error says so, and what the time looks like.
+  GapLog short_log = frictionLog(0.5, 100.0);
+  for (double& t : short_log.t) t *= 1000.0;
+  try {
+    diagnose(short_log, 0.5, {"steering_friction"});
+    FAIL() << "a log at 0.1 Hz was diagnosed";
+  } catch (const InputError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find("the logs feed no subsystem's replay"), std::string::npos) << what;
+    EXPECT_NE(what.find("tracker: friction.csv: a step of 10 s is longer than the tracker's delay"), std::string::npos)
+        << what;
+    EXPECT_NE(what.find("the time column looks like milliseconds"), std::string::npos) << what;
+  }
 }
 
 }  // namespace

@@ -33,11 +33,14 @@ constexpr double kTorqueMotion = 0.5;      ///< [N m]
 constexpr double kDerivativeWindow = 0.1;  ///< [s] half-width of the smoothed derivatives compared here
 
 std::string format(const char* fmt, ...) {
-  char text[512];
-  va_list args;
+  va_list args, again;
   va_start(args, fmt);
-  std::vsnprintf(text, sizeof text, fmt, args);
+  va_copy(again, args);
+  const int length = std::vsnprintf(nullptr, 0, fmt, args);
   va_end(args);
+  std::string text(length > 0 ? static_cast<std::size_t>(length) : 0, '\0');
+  if (length > 0) std::vsnprintf(text.data(), text.size() + 1, fmt, again);
+  va_end(again);
   return text;
 }
 
@@ -85,9 +88,12 @@ class Checker {
   std::vector<InputCheck> run() {
     if (log_.size() < 2 || !(step_ > 0.0)) return out_;
     timeAxis();
-    speedUnits();
     holes();
     rates();
+    // A time axis in another unit makes every derivative, integral and distance wrong by its factor: the
+    // checks built on them would name a "stuck localisation" or a unit where the time is at fault.
+    if (flagged("t")) return out_;
+    speedUnits();
     stuckChannels();
     units();
     speed();
@@ -172,14 +178,19 @@ class Checker {
   // ---- sample rate against each subsystem's band ---------------------------------------------------
   void rates() {
     const double rate = 1.0 / step_, nyquist = 0.5 * rate;
+    // The time axis' own finding, where it explains the rate (a log in ms reads 1000 times slower).
+    std::string time_hint;
+    for (const InputCheck& c : out_) {
+      if (c.channel == "t" && c.kind == "units") time_hint = " (" + c.detail + ")";
+    }
     if (has("torque")) {  // the steering and actuator replays both read the torque
       const Modes m = steeringLoopModes(config_);
       if (m.slow > 0.0 && nyquist < m.slow) {
         add("t", "rate",
             format("at %.3g Hz (Nyquist %.3g Hz) the steering loop's modes (%.3g and %.3g Hz: J_F s^2 + k_d s + k_p = "
                    "0, p = %g) are not sampled: the steering and actuator replays cannot resolve the loop and are "
-                   "skipped",
-                   rate, nyquist, m.slow, m.fast, config_.actuator.p))
+                   "skipped%s",
+                   rate, nyquist, m.slow, m.fast, config_.actuator.p, time_hint.c_str()))
             .skip = {"steering", "actuator"};
       } else if (m.fast > 0.0 && nyquist < m.fast) {
         add("t", "rate",
@@ -194,8 +205,8 @@ class Checker {
       if (m.slow > 0.0 && nyquist < m.slow) {
         add("t", "rate",
             format("at %.3g Hz (Nyquist %.3g Hz) the chassis' modes at %.3g m/s (%.3g and %.3g Hz: the linear "
-                   "single-track model) are not sampled: the chassis replay is skipped",
-                   rate, nyquist, typical_speed_, m.slow, m.fast))
+                   "single-track model) are not sampled: the chassis replay is skipped%s",
+                   rate, nyquist, typical_speed_, m.slow, m.fast, time_hint.c_str()))
             .skip = {"chassis"};
       } else if (m.fast > 0.0 && nyquist < m.fast) {
         add("t", "rate",
@@ -205,7 +216,13 @@ class Checker {
       }
     }
     const double tau1 = config_.delays.pose_to_tracker;
-    if (has("delta_des") && tau1 > 0.0 && step_ > 0.5 * tau1) {
+    if (has("delta_des") && tau1 > 0.0 && step_ > tau1) {
+      add("t", "rate",
+          format("a step of %.3g s is longer than the tracker's delay tau1 = %.3g s: the tracker replay cannot resolve "
+                 "the delay it applies and is skipped%s",
+                 step_, tau1, time_hint.c_str()))
+          .skip = {"tracker"};
+    } else if (has("delta_des") && tau1 > 0.0 && step_ > 0.5 * tau1) {
       add("t", "rate",
           format("a step of %.3g s is more than half the tracker's delay tau1 = %.3g s: the tracker replay resolves a "
                  "sensing delay only to about a step",
