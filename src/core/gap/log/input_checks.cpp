@@ -183,7 +183,7 @@ class Checker {
     for (const InputCheck& c : out_) {
       if (c.channel == "t" && c.kind == "units") time_hint = " (" + c.detail + ")";
     }
-    if (has("torque")) {  // the steering and actuator replays both read the torque
+    if (scaled("torque")) {  // the steering and actuator replays both read the torque, in known units
       const Modes m = steeringLoopModes(config_);
       if (m.slow > 0.0 && nyquist < m.slow) {
         add("t", "rate",

@@ -208,8 +208,8 @@ void writeWhere(std::ostream& out, const GapReport& r) {
     std::map<std::string, double> starts;
     for (std::size_t i = 0; i < w.windows.size() && i < kWindowsShown; ++i) {
       const WindowShare& s = w.windows[i];
-      out << "| " << cell(s.log) << " | " << num(s.t0 - s.log_t0, "%.6g") << " | " << num(s.t1 - s.log_t0, "%.6g")
-          << " | " << percent(s.share) << " |\n";
+      auto since = [&](double t) { return num(std::round(100.0 * (t - s.log_t0)) / 100.0, "%.6g"); };  // to 10 ms
+      out << "| " << cell(s.log) << " | " << since(s.t0) << " | " << since(s.t1) << " | " << percent(s.share) << " |\n";
       if (s.log_t0 != 0.0) starts[s.log] = s.log_t0;
     }
     if (w.windows.size() > kWindowsShown)
