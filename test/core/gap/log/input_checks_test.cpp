@@ -84,6 +84,17 @@ TEST(InputChecks, TheBenchmarksLogsShowNothingOdd) {
   BenchmarkCase s{"checks", "none", "none", "", "sinusoid", {"simulation.duration=16"}, 4u};
   const auto checks = inputChecks(generateBenchmarkLog(s, SensorNoise{}, 500.0), benchmarkNominal("sinusoid"));
   EXPECT_TRUE(checks.empty()) << listed(checks);
+  // Steering that asks for more than the tires give, at the start of a straight run with a 3 m offset at
+  // p = 500 and in a saturating lane change: real, not a unit (a rule on delta's size alone named them).
+  std::vector<BenchmarkCase> cases{benchmarkCase("torque_limit-large-lane_change")};
+  for (const BenchmarkCase& c : familyCases("independent")) {
+    if (c.id == "none-13-straight-p500-100Hz") cases.push_back(c);
+  }
+  ASSERT_EQ(cases.size(), 2u);
+  for (const BenchmarkCase& c : cases) {
+    const auto found = inputChecks(generateBenchmarkLog(c, SensorNoise{}, 500.0), benchmarkCaseNominal(c));
+    EXPECT_TRUE(found.empty()) << c.id << ":" << listed(found);
+  }
 }
 
 TEST(InputChecks, AHoleIsFoundWithWhereAndHowLong) {
@@ -170,6 +181,13 @@ TEST(InputChecks, AnglesInDegreesAndSpeedsInKmhLookWrong) {
   ASSERT_FALSE(units.empty());
   EXPECT_EQ(units[0].channel, "delta");
   EXPECT_TRUE(contains(units[0].detail, "a road-wheel angle in degrees would move 57-170 times")) << units[0].detail;
+
+  // Without a yaw rate to compare with: by what it asks of the tires.
+  log.yaw_rate.clear();
+  units = ofKind(inputChecks(log, nominal()), "units");
+  ASSERT_FALSE(units.empty());
+  EXPECT_EQ(units[0].channel, "delta");
+  EXPECT_TRUE(contains(units[0].detail, "beyond any tire's 20 m/s^2")) << units[0].detail;
 
   log = clean;
   for (double& p : log.psi) p *= 180.0 / M_PI;
