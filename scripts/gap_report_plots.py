@@ -36,21 +36,27 @@ winning effect added (corrected columns all NaN, or absent, when the verdict is 
     yaw_rate_real, yaw_rate_nominal, yaw_rate_corrected [rad/s]
     delta_real, delta_nominal, delta_corrected          front-wheel steering angle [rad]
 
-report.json -- the report (src/core/gap/report/gap_report.cpp documents the layout). Used here: where.subsystem,
-    where.subsystems[].name/nrmse, where.windows[] (t0, t1, share; largest first), where.bands[] (f0, f1,
-    share), ranking[] (effect, heldout_gap_before, heldout_gap_after, shrink, closed_loop_bounded), verdict (effect, confidence,
-    shrink), how_far (before, after). null means "not a number". Without report.json the plots are still
-    drawn, without windows, bands and nrmse annotations; ranking.png needs it.
+report.json -- the report (src/core/gap/report/gap_report.cpp documents the layout). Used here: logs_t0 (each
+    log's first sample in its own time), where.subsystem, where.subsystems[].name/nrmse, where.windows[] (t0, t1,
+    share, log_t0; largest first), where.bands[] (f0, f1, share), ranking[] (effect, heldout_gap_before,
+    heldout_gap_after, shrink, closed_loop_bounded), verdict (effect, confidence, shrink), how_far (before,
+    after, not_run). null means "not a number". Without report.json the plots are still drawn, without windows,
+    bands and nrmse annotations; ranking.png needs it.
+
+Times are drawn in seconds since the log's first sample (report.json logs_t0): a log stamped in epoch time
+(t ~ 1.7e9 s) would otherwise read 1.692e+09 on the axis and in the titles.
 
 Outputs (in DIR)
 ----------------
 residuals.png  one panel per subsystem, residual vs time, the top 5 windows of report.json shaded with their share
 spectrum.png   left: PSD per subsystem (log-log) with the bands shaded; right: bar chart of the band shares
-overlay.png    y, yaw rate, delta: real vs nominal vs corrected on the held-out data
+overlay.png    y, yaw rate, delta: real vs nominal vs corrected on the held-out data; not drawn when the
+               closed-loop replay did not run (report.json how_far.not_run, or an overlay.csv without rows)
 ranking.png    held-out gap before/after per candidate effect (bars), shrink annotated, verdict highlighted,
                fits that make the logged closed loop unbounded hatched
 
-A missing or unreadable input skips its plot with a message on stderr; other plots are still drawn.
+A missing or unreadable input skips its plot with a message on stderr (and removes a PNG of that name left by an
+earlier run, so that report.md does not show it); other plots are still drawn.
 Exit status: 0 when every plot was drawn or skipped for a missing input, 1 if a plot failed on malformed
 input, 2 on bad usage.
 """
@@ -60,6 +66,7 @@ import json
 import math
 import os
 import sys
+import textwrap
 
 try:
     import numpy as np
@@ -147,6 +154,19 @@ def read_report(directory):
         return None
 
 
+def log_start(report, first_t):
+    """The first sample's time of the log a series starting at first_t belongs to (report.json logs_t0): the
+    latest log start at or before it; 0 without report.json or for series before every start."""
+    starts = [number(v) for v in ((report or {}).get("logs_t0") or {}).values()]
+    starts = [v for v in starts if math.isfinite(v) and (not math.isfinite(first_t) or v <= first_t + 1e-6)]
+    return max(starts) if starts else 0.0
+
+
+def time_label(offset):
+    label = "time since the log's start [s]"
+    return label + (" (its first sample: t = %.3f s)" % offset if offset != 0.0 else "")
+
+
 def percent(fraction):
     return "n/a" if not math.isfinite(fraction) else "%.0f %%" % (100.0 * fraction)
 
@@ -160,20 +180,38 @@ def plot_residuals(directory, report, dpi):
     data = read_csv(path)
     require(data, ["t"], path)
     t = data["t"]
+    offset = log_start(report, float(np.nanmin(t)) if t.size else math.nan)
+    t = t - offset
     where = (report or {}).get("where", {})
     nrmse = {s.get("name"): number(s.get("nrmse")) for s in where.get("subsystems", [])}
     windows = where.get("windows", [])[:TOP_WINDOWS]
     gap_subsystem = where.get("subsystem")
+    # Each window in seconds since its own log's start (log_t0; older reports: the series' offset).
+    spans = []
+    for rank, w in enumerate(windows):
+        start = number(w.get("log_t0")) if w.get("log_t0") is not None else offset
+        t0, t1 = number(w.get("t0")) - start, number(w.get("t1")) - start
+        if math.isfinite(t0) and math.isfinite(t1):
+            spans.append((rank, t0, t1, number(w.get("share"))))
+    # Labels "#k" on top of the first panel, stacked in rows where they would overlap (adjacent windows).
+    x_range = (float(np.nanmax(t)) - float(np.nanmin(t))) if t.size else 1.0
+    label_rows = {}
+    placed = []  # (centre, row)
+    for rank, t0, t1, _ in sorted(spans, key=lambda s: 0.5 * (s[1] + s[2])):
+        centre = 0.5 * (t0 + t1)
+        row = 0
+        while any(r == row and abs(c - centre) < 0.04 * max(x_range, 1e-9) for c, r in placed):
+            row += 1
+        placed.append((centre, row))
+        label_rows[rank] = row
 
-    fig, axes = plt.subplots(len(SUBSYSTEMS), 1, sharex=True, figsize=(10, 9), constrained_layout=True)
+    fig, axes = plt.subplots(len(SUBSYSTEMS), 1, sharex=True, figsize=(10, 9.5), constrained_layout=True)
     for ax, name in zip(axes, SUBSYSTEMS):
-        for rank, w in enumerate(windows):
-            t0, t1 = number(w.get("t0")), number(w.get("t1"))
-            if not (math.isfinite(t0) and math.isfinite(t1)):
-                continue
+        for rank, t0, t1, _ in spans:
             ax.axvspan(t0, t1, facecolor="gold", alpha=0.35, edgecolor="darkgoldenrod", lw=0.8)
             if name == SUBSYSTEMS[0]:
                 ax.annotate("#%d" % (rank + 1), xy=(0.5 * (t0 + t1), 1.0), xycoords=("data", "axes fraction"),
+                            xytext=(0, 2 + 10 * label_rows[rank]), textcoords="offset points",
                             ha="center", va="bottom", fontsize=8)
         values = data.get(name)
         if has_data(values):
@@ -186,16 +224,20 @@ def plot_residuals(directory, report, dpi):
             title += ", nrmse %.3g" % nrmse[name]
         if name == gap_subsystem:
             title += "  ← carries the gap"
-        ax.set_title(title, fontsize=10, loc="left", fontweight="bold" if name == gap_subsystem else "normal")
+        # Above the window labels of the first panel.
+        pad = 6 + (12 * (1 + max(label_rows.values())) if name == SUBSYSTEMS[0] and label_rows else 0)
+        ax.set_title(title, fontsize=10, loc="left", fontweight="bold" if name == gap_subsystem else "normal", pad=pad)
         ax.set_ylabel("residual [-]")
         ax.grid(True, alpha=0.3)
-    axes[-1].set_xlabel("time t [s]")
-    title = "Nominal-model normalised residual per subsystem (open-loop replay with logged inputs)"
-    if windows:
-        title += "\nshaded: top windows by share of residual energy — " + ", ".join(
-            "#%d %.3g–%.3g s %s" % (rank + 1, number(w.get("t0")), number(w.get("t1")), percent(number(w.get("share"))))
-            for rank, w in enumerate(windows))
-    fig.suptitle(title, fontsize=11)
+    axes[-1].set_xlabel(time_label(offset))
+    fig.suptitle("Nominal-model normalised residual per subsystem\n(open-loop replay with logged inputs)", fontsize=11)
+    if spans:
+        # The windows' list below the panels, wrapped to the figure's width (a one-line title ran off the page).
+        # (No-break spaces inside an entry: a line breaks only between windows.)
+        text = "shaded: top windows by share of residual energy — " + ", ".join(
+            ("#%d %.2f–%.2f s %s" % (rank + 1, t0, t1, percent(share))).replace(" ", "\u00a0")
+            for rank, t0, t1, share in spans)
+        fig.supxlabel("\n".join(textwrap.wrap(text, 110)), fontsize=9)
     out = os.path.join(directory, "residuals.png")
     fig.savefig(out, dpi=dpi)
     plt.close(fig)
@@ -262,10 +304,16 @@ def plot_spectrum(directory, report, dpi):
 
 
 def plot_overlay(directory, report, dpi):
+    not_run = (report or {}).get("how_far", {}).get("not_run")
+    if not_run:
+        raise SkipPlot("the closed-loop replay did not run (%s)" % not_run)
     path = os.path.join(directory, "overlay.csv")
     data = read_csv(path)
     require(data, ["t"], path)
-    t = data["t"]
+    if data["t"].size == 0:
+        raise SkipPlot("%s has no rows (no closed-loop replay)" % path)
+    offset = log_start(report, float(np.nanmin(data["t"])))
+    t = data["t"] - offset
     verdict = (report or {}).get("verdict", {})
     effect = verdict.get("effect")
     corrected_label = "nominal + %s" % effect if effect and effect != "unexplained" else "corrected"
@@ -289,7 +337,7 @@ def plot_overlay(directory, report, dpi):
             legend_drawn = True
         ax.set_ylabel(label)
         ax.grid(True, alpha=0.3)
-    axes[-1].set_xlabel("time t [s]")
+    axes[-1].set_xlabel(time_label(offset))
     title = "Held-out closed-loop replay: real vs nominal vs corrected"
     how_far = (report or {}).get("how_far", {})
     before, after = number(how_far.get("before")), number(how_far.get("after"))
@@ -448,7 +496,11 @@ def main(argv):
             out = plot(args.dir, report, args.dpi)
             message("wrote %s" % out)
         except SkipPlot as skip:
-            message("skipped %s: %s" % (plot.__name__.replace("plot_", "") + ".png", skip))
+            name = plot.__name__.replace("plot_", "") + ".png"
+            message("skipped %s: %s" % (name, skip))
+            stale = os.path.join(args.dir, name)
+            if os.path.isfile(stale):  # an earlier run's: report.md links every PNG that exists
+                os.remove(stale)
         except Exception as error:  # malformed input: report it, draw the other plots
             message("failed %s: %s: %s" % (plot.__name__.replace("plot_", "") + ".png", type(error).__name__, error))
             plt.close("all")

@@ -24,6 +24,7 @@
 
 #include "conversions.h"
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/gap/log/angle_unwrap.h"
 #include "topic_names.h"
 
 namespace lane_keeping {
@@ -371,6 +372,7 @@ GapLog readSuiteTopics(const std::string& path, double max_rate) {
   if (outside > 0) log.notes.push_back(std::to_string(outside) + " samples outside the recorded desired steering/torque skipped");
   if (non_finite > 0) log.notes.push_back(std::to_string(non_finite) + " samples holding NaN/Inf skipped");
   if (log.size() < 10) throw InputError(path + ": fewer than 10 usable samples in the bag");
+  unwrapHeading(&log);  // a recorder or a localisation may wrap psi at +-pi, as a CSV's can (angle_unwrap.h)
   return log;
 }
 

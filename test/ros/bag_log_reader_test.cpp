@@ -22,8 +22,9 @@ namespace {
 
 std::string tempBag(const std::string& name) { return testing::TempDir() + name; }
 
-/// 2 s of a plant at 1 kHz in namespace /car, desired steering at 100 Hz, optional torque commands.
-void writeSuiteBag(const std::string& path, bool with_torque, bool nan_sample = false) {
+/// 2 s of a plant at 1 kHz in namespace /car, desired steering at 100 Hz, optional torque commands; with
+/// `wrapping_heading` psi turns at 0.8 rad/s from 3 rad and is wrapped into [-pi, pi] (crosses pi at 0.177 s).
+void writeSuiteBag(const std::string& path, bool with_torque, bool nan_sample = false, bool wrapping_heading = false) {
   rosbag::Bag bag(path, rosbag::bagmode::Write);
   for (int k = 0; k < 2000; k += 10) {
     lane_keeping::VehicleStateArray states;
@@ -36,6 +37,7 @@ void writeSuiteBag(const std::string& path, bool with_torque, bool nan_sample = 
       s.delta = 0.002 * i * 1e-3;
       s.speed = 15.0;
       s.steering_torque = 3.0;
+      if (wrapping_heading) s.psi = std::remainder(3.0 + 0.8 * i * 1e-3, 2.0 * M_PI);
       if (nan_sample && i == 500) s.y = std::nan("");
       states.samples.push_back(s);
     }
@@ -70,6 +72,19 @@ TEST(BagLogReader, ReadsTheSuiteTopicsInAnyNamespace) {
   EXPECT_DOUBLE_EQ(log.torque[3], 7.0);  // the command, not the applied torque
   EXPECT_NEAR(log.delta_des[10], 0.001 * log.t[10], 1e-12);  // interpolated desired steering
   EXPECT_TRUE(log.hasSpeed() && log.hasLateralAcceleration() && log.hasSteeringRate());
+}
+
+TEST(BagLogReader, AHeadingThatWrapsAtPiIsUnwrappedAndTheNotesSaySo) {
+  const std::string path = tempBag("wrapping.bag");
+  writeSuiteBag(path, true, false, true);
+  const GapLog log = readBagLog(path, 100.0);
+  ASSERT_GT(log.size(), 150u);
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    ASSERT_NEAR(log.psi[i], 3.0 + 0.8 * log.t[i], 1e-9) << "sample " << i;  // continuous through pi
+  }
+  bool said = false;
+  for (const auto& note : log.notes) said = said || note.find("psi unwrapped: 1 wrap") != std::string::npos;
+  EXPECT_TRUE(said);
 }
 
 TEST(BagLogReader, WithoutTorqueCommandsUsesTheAppliedTorqueAndSaysSo) {

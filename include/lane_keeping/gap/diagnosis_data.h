@@ -11,6 +11,7 @@
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/diagnosis_options.h"
 #include "lane_keeping/gap/log/gap_run.h"
+#include "lane_keeping/gap/log/input_checks.h"
 #include "lane_keeping/gap/log/log_signals.h"
 #include "lane_keeping/gap/replay/replay_trace.h"
 
@@ -24,12 +25,16 @@ struct RunData {
   std::shared_ptr<const SimConfig> config;
   /// What estimateExcitationClock found when it did not keep the log's own clock (replay/excitation_clock.h).
   std::string clock_note;
+  std::vector<InputCheck> input_checks;  ///< what is odd about the log (input_checks.h)
 };
 
+/// Each run ready for the replays, with its input checks. Throws InputError for a log the checks refuse
+/// (refuseImplausibleLog), before any replay.
 std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs);
 
 /// The subsystems no run can feed (every run must: data sets are replayed together), each with why —
-/// the columns the first run lacking them does not have (replayUnavailable).
+/// the columns the first run lacking them does not have (replayUnavailable), or the input check that
+/// rules the replay out: a stuck channel it reads, a sample rate too low for its band.
 std::map<std::string, std::string> unavailableSubsystems(const std::vector<RunData>& runs);
 /// The others.
 std::set<std::string> availableSubsystems(const std::vector<RunData>& runs);
@@ -41,8 +46,15 @@ struct Dataset {
   std::vector<TimeSegment> segments;
 };
 
-/// Each run whole, from `margin` seconds after its start.
+/// Each run whole, from `margin` seconds after its start, less its holes (cutAtHoles).
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin);
+
+/// The data sets' segments with each hole of their log's time axis (timeHoles, input_checks.h) cut out,
+/// and `margin` seconds after it (the delayed inputs need history again, as at a log's start): the replays
+/// integrate a segment with the inputs interpolated between samples, and across a hole that is an invented
+/// input. Pieces shorter than kMinPieceBetweenHoles are dropped, and so is a data set left without any.
+constexpr double kMinPieceBetweenHoles = 0.5;  ///< [s]
+void cutAtHoles(std::vector<Dataset>* data, double margin);
 
 /// Training and held-out data (DESIGN §5 "which"):
 ///  * held-out runs given: all training runs train, all held-out runs score;

@@ -85,6 +85,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     for (const GapRun& run : *runs) {
       const GapLog& log = run.log;
       (runs == &training ? report.logs : report.heldout).push_back(log.source);
+      if (!log.t.empty()) report.logs_t0[log.source] = log.t.front();
       report.rows_used += log.size();
       report.rows_skipped += log.rows_skipped;
       for (const auto& note : log.notes) report.notes.push_back(log.source + ": " + note);
@@ -97,8 +98,9 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   const std::vector<RunData> train_runs = prepareRuns(training), held_runs = prepareRuns(heldout);
   std::vector<RunData> runs = train_runs;
   runs.insert(runs.end(), held_runs.begin(), held_runs.end());
-  for (const RunData& run : runs) {
+  for (const RunData& run : runs) {  // what is odd about each log (log/input_checks.h)
     if (!run.clock_note.empty()) report.notes.push_back(run.clock_note);
+    for (const InputCheck& c : run.input_checks) report.input_checks.push_back({c.log, c.channel, c.kind, c.detail, c.t0, c.t1});
   }
   // A partial log: the subsystems whose inputs and outputs it lacks are skipped, saying why.
   for (const auto& [name, why] : unavailableSubsystems(runs)) report.skipped_subsystems.push_back({name, why});

@@ -15,6 +15,8 @@ namespace diagnosis {
 std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs) {
   std::vector<RunData> out;
   for (const GapRun& run : runs) {
+    std::vector<InputCheck> checks = inputChecks(run.log, run.config);
+    refuseImplausibleLog(checks);
     auto log = std::make_shared<LogSignals>(run.log);
     SimConfig config = run.config;
     if (run.initial_from_log) {
@@ -25,16 +27,34 @@ std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs) {
     const ExcitationClock clock = estimateExcitationClock(config, *log);
     config.tracker.excitation_clock_offset += clock.offset;
     out.push_back({std::move(log), std::make_shared<const SimConfig>(std::move(config)),
-                   clock.note.empty() ? "" : run.log.source + ": " + clock.note});
+                   clock.note.empty() ? "" : run.log.source + ": " + clock.note, std::move(checks)});
   }
   return out;
 }
+
+namespace {
+
+/// Why an input check rules out the replay of `subsystem` on `run` ("" if none does): a rate check that
+/// skips it, or a stuck channel it reads (the replay would be unavailable without that channel).
+std::string ruledOutByChecks(const std::string& subsystem, const RunData& run) {
+  for (const InputCheck& check : run.input_checks) {
+    if (std::find(check.skip.begin(), check.skip.end(), subsystem) != check.skip.end()) return check.detail;
+    if (!check.unusable) continue;
+    GapLog without = run.log->log();
+    if (std::vector<double>* column = without.column(check.channel)) column->clear();
+    if (!replayUnavailable(subsystem, without).empty()) return check.detail;
+  }
+  return "";
+}
+
+}  // namespace
 
 std::map<std::string, std::string> unavailableSubsystems(const std::vector<RunData>& runs) {
   std::map<std::string, std::string> out;
   for (const std::string& name : subsystemNames()) {
     for (const RunData& run : runs) {
-      const std::string why = replayUnavailable(name, run.log->log());
+      std::string why = replayUnavailable(name, run.log->log());
+      if (why.empty()) why = ruledOutByChecks(name, run);
       if (why.empty()) continue;
       out[name] = run.log->log().source + ": " + why;
       break;
@@ -55,7 +75,32 @@ std::set<std::string> availableSubsystems(const std::vector<RunData>& runs) {
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin) {
   std::vector<Dataset> out;
   for (const auto& run : runs) out.push_back({run.log, run.config, {{run.log->start() + margin, run.log->end() + 1e-9}}});
+  cutAtHoles(&out, margin);
   return out;
+}
+
+void cutAtHoles(std::vector<Dataset>* data, double margin) {
+  std::vector<Dataset> kept;
+  for (Dataset& set : *data) {
+    const std::vector<TimeHole> holes = timeHoles(set.log->log());
+    if (holes.empty()) {
+      kept.push_back(std::move(set));
+      continue;
+    }
+    std::vector<TimeSegment> pieces;
+    for (const TimeSegment& segment : set.segments) {
+      double from = segment.t0;
+      for (const TimeHole& hole : holes) {
+        if (hole.t0 >= segment.t1 || hole.t1 + margin <= from) continue;  // outside what is left of it
+        if (hole.t0 - from >= kMinPieceBetweenHoles) pieces.push_back({from, hole.t0});
+        from = std::max(from, hole.t1 + margin);
+      }
+      if (segment.t1 - from >= kMinPieceBetweenHoles) pieces.push_back({from, segment.t1});
+    }
+    set.segments = std::move(pieces);
+    if (!set.segments.empty()) kept.push_back(std::move(set));
+  }
+  *data = std::move(kept);
 }
 
 std::vector<Dataset> decimatedData(const std::vector<Dataset>& data, double piece, std::size_t stride) {
@@ -243,7 +288,9 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
       split.held_blocks.push_back(log->log().source + " (the odd ones of " + std::to_string(bounds.size() - 1) +
                                   " blocks balanced in excitation, " + tenths(shortest) + "-" + tenths(longest) + " s)");
     }
-    if (split.held.empty()) {
+    cutAtHoles(&split.train, options.start_margin);
+    cutAtHoles(&split.held, options.start_margin);
+    if (split.held.empty() || split.train.empty()) {
       throw InputError("gap diagnosis: the log is too short to hold out a block of " +
                        formatNumber(options.min_block_length) + " s");
     }

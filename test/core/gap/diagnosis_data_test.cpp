@@ -83,6 +83,71 @@ TEST(DataSplit, GivenHeldOutRunsScoreAndTheRestTrains) {
   EXPECT_EQ(split.held[0].log->log().source, "b.csv");
 }
 
+/// `log` without the rows in [from, to).
+GapLog withHole(GapLog log, double from, double to) {
+  GapLog out = log;
+  for (auto* column : {&out.t, &out.x, &out.y, &out.psi, &out.yaw_rate, &out.delta, &out.delta_des, &out.torque}) {
+    column->clear();
+  }
+  for (std::size_t i = 0; i < log.size(); ++i) {
+    if (log.t[i] >= from && log.t[i] < to) continue;
+    out.t.push_back(log.t[i]);
+    out.x.push_back(log.x[i]);
+    out.y.push_back(log.y[i]);
+    out.psi.push_back(log.psi[i]);
+    out.yaw_rate.push_back(log.yaw_rate[i]);
+    out.delta.push_back(log.delta[i]);
+    out.delta_des.push_back(log.delta_des[i]);
+    out.torque.push_back(log.torque[i]);
+  }
+  return out;
+}
+
+// Issue 48: the replays integrated across a 5 s hole with the inputs interpolated over it.
+TEST(DataSplit, NoSegmentSpansAHoleAndEachStartsAMarginAfterIt) {
+  const DiagnosisOptions options;
+  const RunData holed = run(withHole(transientLog("holed.csv"), 12.0, 17.0));  // samples 11.99 and 17.0 around it
+  for (const DataSplit& split : {splitData({holed}, {}, options), splitData({holed}, {holed}, options),
+                                 splitData({holed, run(transientLog("b.csv"))}, {}, options)}) {
+    for (const auto* sets : {&split.train, &split.held}) {
+      for (const Dataset& set : *sets) {
+        if (set.log->log().source != "holed.csv") continue;
+        for (const TimeSegment& s : set.segments) {
+          EXPECT_TRUE(s.t1 <= 11.99 + 1e-9 || s.t0 >= 17.0 + options.start_margin - 1e-9)
+              << split.method << ": segment " << s.t0 << "-" << s.t1;
+          EXPECT_GE(s.t1 - s.t0, kMinPieceBetweenHoles - 1e-9);
+        }
+      }
+    }
+  }
+  // What is left is used: the data before and after the hole.
+  const std::vector<Dataset> whole = wholeLogs({holed}, options.start_margin);
+  ASSERT_EQ(whole.size(), 1u);
+  ASSERT_EQ(whole[0].segments.size(), 2u);
+  EXPECT_NEAR(whole[0].segments[0].t1, 11.99, 1e-9);
+  EXPECT_NEAR(whole[0].segments[1].t0, 17.6, 1e-9);
+}
+
+TEST(UnavailableSubsystems, AStuckChannelRulesOutTheReplaysThatReadIt) {
+  GapLog log = transientLog("stuck.csv");
+  for (double& d : log.delta) d = 0.0;
+  const std::vector<RunData> runs = prepareRuns({gapRun(log, SimConfig{})});
+  const InputCheck* stuck = nullptr;
+  for (const InputCheck& c : runs[0].input_checks) {
+    if (c.kind == "stuck") stuck = &c;
+  }
+  ASSERT_NE(stuck, nullptr);
+  EXPECT_EQ(stuck->channel, "delta");
+  const auto unavailable = unavailableSubsystems(runs);
+  EXPECT_EQ(unavailable.size(), 3u);  // the tracker reads no steering angle
+  for (const char* name : {"steering", "chassis", "actuator"}) {
+    ASSERT_TRUE(unavailable.count(name)) << name;
+    EXPECT_EQ(unavailable.at(name), "stuck.csv: " + stuck->detail);
+  }
+  EXPECT_TRUE(availableSubsystems(runs).count("tracker"));
+  EXPECT_TRUE(unavailableSubsystems(prepareRuns({gapRun(transientLog("fine.csv"), SimConfig{})})).empty());
+}
+
 // A fit's coarse data (candidate_fit.h): every k-th chassis-horizon piece of each set, spread over the
 // whole of it, each set keeping at least its first piece.
 TEST(DecimatedData, KeepsEveryKthPieceOfEachSetSpreadOverTheSegments) {

@@ -25,6 +25,9 @@ struct GapLog {
   std::vector<double> delta_des;  ///< desired steering angle as the tracker produced it [rad]
   std::vector<double> torque;     ///< steering torque command M_S [N m]
   std::vector<double> v;          ///< optional: speed [m/s] (empty if absent)
+  /// optional: lateral velocity of G in the body frame [m/s] (sigma1 of Beregi eq 1, left positive), as an
+  /// INS or an optical sensor measures it; without it the replays differentiate the pose (log_signals.h)
+  std::vector<double> vy;
   std::vector<double> ay;         ///< optional: lateral acceleration at G [m/s^2] (empty if absent)
   std::vector<double> delta_rate; ///< optional: steering rate [rad/s] (empty if absent)
 
@@ -43,6 +46,10 @@ struct GapLog {
   bool hasSpeed() const { return !v.empty(); }
   bool hasLateralAcceleration() const { return !ay.empty(); }
   bool hasSteeringRate() const { return !delta_rate.empty(); }
+  bool hasLateralVelocity() const { return !vy.empty(); }
+  /// The values of schema column `name` (log_mapping.h), or nullptr for a name outside the schema.
+  const std::vector<double>* column(const std::string& name) const;
+  std::vector<double>* column(const std::string& name);
   double duration() const { return t.empty() ? 0.0 : t.back() - t.front(); }
   /// Median sample spacing [s].
   double medianStep() const;
@@ -55,7 +62,9 @@ struct GapLog {
 /// Throws InputError naming the file and, where it applies, the line and column: missing file,
 /// empty file, no time column, unparsable cell, non-increasing t, fewer than 10 valid rows; and if a
 /// column the mapping names is not in the file.
-/// Rows with NaN/Inf (or empty cells) in a used column are skipped and counted.
+/// Rows with NaN/Inf (or empty cells) in a used column are skipped and counted. A heading that wraps at
+/// +-pi is unwrapped (angle_unwrap.h) and columns the mapping shifts in time are moved onto the time
+/// base (column_shift.h); the notes say so.
 GapLog readCsvLog(const std::string& path, const LogMapping& mapping = {});
 
 /// Writes a GapLog as CSV (the same columns), full precision.

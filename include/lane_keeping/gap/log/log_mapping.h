@@ -10,6 +10,8 @@
 ///       delta:  {column: steering_wheel_angle, scale: 0.0667, offset: 0}   # value = scale * raw + offset
 ///       torque: {column: eps_torque, unscaled: true}   # units unknown: marked, not used where they matter
 ///       x:      {column: east}
+///       yaw_rate: {column: yaw, shift: 0.2}            # logged 0.2 s late (column_shift.h)
+///       vy:     {column: lateral_velocity}             # optional: lateral velocity of G, body frame
 ///
 /// A schema column not listed keeps its own name; a listed one is read only from its mapped column.
 #include <map>
@@ -26,8 +28,15 @@ struct ColumnMapping {
   double scale = 1.0;      ///< schema value = scale * raw + offset
   double offset = 0.0;
   bool unscaled = false;   ///< the raw values are in unknown units (e.g. torque in bus counts)
+  /// [s] the column was logged this late (negative: early): the schema value at t is the raw value at
+  /// t + shift, interpolated linearly on the log's time base (column_shift.h). |shift| <= kMaxColumnShift.
+  double shift = 0.0;
   std::string location;    ///< file:line of the entry, for messages
 };
+
+/// [s] the largest time shift a mapping may give a column: a sensor or bus latency is milliseconds to a
+/// few tenths of a second; a shift of seconds is a clock error, to be fixed in the log itself.
+constexpr double kMaxColumnShift = 10.0;
 
 struct LogMapping {
   std::string source;                           ///< the file the mapping came from ("" = none)
@@ -40,12 +49,13 @@ struct LogMapping {
   std::string columnFor(const std::string& schema) const;
 };
 
-/// The schema's columns: t, x, y, psi, yaw_rate, v, ay, delta, delta_rate, delta_des, torque.
+/// The schema's columns: t, x, y, psi, yaw_rate, v, vy, ay, delta, delta_rate, delta_des, torque.
 bool isSchemaColumn(const std::string& name);
 
 /// The mapping under `log_section` (the node of the `log:` key), read from `file`. Throws ConfigError
 /// naming file:line and the key: an unknown schema column, an unknown time unit, a scale that is zero or
-/// not finite, a column mapped twice, an entry without `column`.
+/// not finite, a shift that is not finite or beyond kMaxColumnShift, a column mapped twice, an entry
+/// without `column`.
 LogMapping logMappingFromYaml(const YAML::Node& log_section, const std::string& file);
 /// The `log:` section of a YAML file, or an empty mapping if it has none. Throws ConfigError as above,
 /// or if the file cannot be read.

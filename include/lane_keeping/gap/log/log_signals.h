@@ -6,6 +6,7 @@
 ///   desired rate   delta_des_dot (the derivative of a cubic spline through delta_des: computed by the
 ///                  tracker, not measured, so it is not smoothed), yaw acceleration d/dt yaw_rate,
 ///   velocity of G  x_dot, y_dot,  and sigma1 = -x_dot sin(psi) + y_dot cos(psi) (row 2 of Beregi eq 1),
+///                  or the logged lateral velocity vy where the log has one (gap_log.h),
 ///   the rate of the speed dV/dt (when the log has v), and, kept for nearestAlongSmoothed only, the pose
 ///   x, y, psi and the steering angle and rate smoothed by the same filter (value, zero lag).
 #include <algorithm>
@@ -112,7 +113,7 @@ class LogSignals {
 
   /// White-noise standard deviation of a channel, estimated from fourth differences of the samples
   /// (var(d4 x) = 70 sigma^2 for white noise; a smooth signal contributes ~h^4 x'''' ).
-  /// For derived channels (delta_rate without a column, sigma1) it is propagated through the
+  /// For derived channels (delta_rate without a column, sigma1 without vy) it is propagated through the
   /// least-squares derivative: sigma' ~ sigma sqrt(3 / (n w^2)) for n samples in a half-width w.
   double noise(Channel c) const { return noise_[c]; }
 

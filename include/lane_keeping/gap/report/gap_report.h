@@ -22,6 +22,9 @@ struct WindowShare {
   std::string log;            ///< the run (log source) the window lies in
   double t0 = 0.0, t1 = 0.0;  ///< [s], the log's own time
   double share = 0.0;         ///< fraction of the residual energy in [t0, t1)
+  /// [s] the log's first sample, in its own time: report.md and the plots show t0 - log_t0 (an epoch
+  /// stamp, t ~ 1.7e9 s, read as 1.692e+09 there)
+  double log_t0 = 0.0;
 };
 
 struct BandShare {
@@ -120,6 +123,8 @@ struct ClosedLoopGap {
   /// Per-subsystem excess of the noise-only reference (noise_reference.h): the part of each excess a
   /// perfect model would leave; the gap subtracts it in quadrature.
   std::map<std::string, double> subsystems_noise_reference;
+  /// Why the closed-loop replay did not run or gave no gap ("" when it did): before and after are NaN then.
+  std::string not_run;
 };
 
 /// A subsystem the logs cannot feed (a partial log), and why.
@@ -132,6 +137,18 @@ struct SkippedSubsystem {
 struct UntestableEffect {
   std::string effect;
   std::string reason;
+};
+
+/// Something odd about a log, found before the diagnosis (log/input_checks.h; kinds: hole, stuck, rate,
+/// units, speed, span), with what the diagnosis did about it.
+struct InputCheckEntry {
+  std::string log;
+  std::string channel;  ///< schema column ("t" for the time axis)
+  std::string kind;
+  std::string detail;
+  /// [s] a hole's last sample before and first after it, in the log's own time (NaN for other kinds)
+  double t0 = std::numeric_limits<double>::quiet_NaN();
+  double t1 = std::numeric_limits<double>::quiet_NaN();
 };
 
 struct GapReport {
@@ -152,6 +169,9 @@ struct GapReport {
   /// "fit <effect>" per candidate (on its worker thread), "which" (all fits), "how_far" (closed-loop
   /// replays). Says where a slow diagnosis spends its time.
   std::vector<std::pair<std::string, double>> wall_seconds;
+  std::vector<InputCheckEntry> input_checks;  ///< what is odd about the logs, found before the diagnosis
+  /// [s] each log's first sample in its own time (by source): report.md and the plots give times since it
+  std::map<std::string, double> logs_t0;
 };
 
 /// DIR/report.json (DESIGN §5 fields and the rest). Throws InputError if DIR cannot be written.

@@ -6,6 +6,7 @@
 
 #include "lane_keeping/common/parallel_for.h"
 #include "lane_keeping/gap/replay/closed_loop_replay.h"
+#include "lane_keeping/gap/replay/subsystem_replay.h"
 
 namespace lane_keeping {
 namespace diagnosis {
@@ -25,7 +26,19 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
   for (const auto& [name, score] : (winner ? winner->heldout_scores : nominal_held.scores)) {
     report->how_far.subsystems_after[name] = score.excess;
   }
-  if (options.closed_loop) {
+  if (!options.closed_loop) {
+    // Not run: no gap to show (0 -> 0 read as a perfect match), and no overlay to draw.
+    report->how_far.before = report->how_far.after = kNaN;
+    std::string why;
+    for (const RunData& run : runs) {
+      why = replayUnavailable("tracker", run.log->log());
+      if (!why.empty()) {
+        why = "the logs cannot drive the closed loop: " + run.log->log().source + ": " + why;
+        break;
+      }
+    }
+    report->how_far.not_run = why.empty() ? "closed-loop replays switched off (DiagnosisOptions::closed_loop)" : why;
+  } else {
     // Each run's nominal and corrected closed loops are independent: side by side on the threads
     // (each starts from the lateral velocity its run's chassis replay estimates at the log's start).
     std::vector<double> start_sigma1(runs.size(), kNaN);
@@ -79,6 +92,7 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
     }
     report->how_far.before = counted ? std::sqrt(before / counted) : kNaN;
     report->how_far.after = counted ? std::sqrt(after / counted) : kNaN;
+    if (counted == 0) report->how_far.not_run = "no closed-loop replay gave a gap (see the notes)";
   }
 }
 

@@ -188,7 +188,7 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, d
         energy[std::min(bins - 1, static_cast<int>((t[i] - t_min) / width))] += e[i];
       }
       for (int b = 0; b < bins; ++b) {
-        windows.push_back({log->log().source, t_min + b * width, t_min + (b + 1) * width, energy[b] / total});
+        windows.push_back({log->log().source, t_min + b * width, t_min + (b + 1) * width, energy[b] / total, log->start()});
       }
       if (span.size() == 1) where.onset = gapOnset(energy, t_min, width);
     }
@@ -227,7 +227,8 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, d
   }
 
   // Regimes: share of the excess energy vs share of samples in bins of |front slip angle|, |a_y|,
-  // |steering rate| (from the log; the slip angle with the chassis replay's lateral velocity).
+  // |steering rate| (from the log; the slip angle with the chassis replay's lateral velocity). V is the
+  // logged speed where the log has one (a real run goes from 8 to 20 m/s), else the configured one.
   struct Binning {
     std::string name;
     std::vector<double> edges;
@@ -241,7 +242,9 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, d
     for (std::size_t i = 0; i < t.size(); ++i) {
       const LogSignals* log = data[set[i]].log.get();
       const SimConfig& config = *data[set[i]].config;
-      const double b_front = config.vehicle.cgToFrontAxle(), V = config.vehicle.speed;
+      const double b_front = config.vehicle.cgToFrontAxle();
+      const double V = log->has(LogSignals::kSpeed) ? std::max(1.0, std::fabs(log->at(LogSignals::kSpeed, t[i])))
+                                                    : config.vehicle.speed;
       double value = 0.0;
       if (binning.name == "slip_angle") {
         value = std::fabs(log->at(LogSignals::kDelta, t[i]) -

@@ -14,6 +14,8 @@
 #include <stdexcept>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/gap/log/angle_unwrap.h"
+#include "lane_keeping/gap/log/column_shift.h"
 #include "lane_keeping/sim/log_row.h"
 
 namespace lane_keeping {
@@ -46,6 +48,7 @@ const std::vector<ColumnSpec>& columnSpecs() {
       {"psi", false, &GapLog::psi, 1e5, "rad"},      // unwrapped over a day of driving
       {"yaw_rate", false, &GapLog::yaw_rate, 10.0, "rad/s"},  // a spin is 2-3 rad/s
       {"v", false, &GapLog::v, 150.0, "m/s"},
+      {"vy", false, &GapLog::vy, 50.0, "m/s"},       // a car sliding sideways at 180 km/h
       {"ay", false, &GapLog::ay, 100.0, "m/s^2"},   // 10 g: a crash, not driving
       {"delta", false, &GapLog::delta, 1.6, "rad"},  // the road-wheel angle; pi/2 is the model's singularity
       {"delta_rate", false, &GapLog::delta_rate, 50.0, "rad/s"},
@@ -127,6 +130,17 @@ bool GapLog::has(const std::string& name, bool scaled) const {
     if (name == spec.name) return !(this->*spec.member).empty() && !(scaled && unscaled.count(name));
   }
   return false;
+}
+
+const std::vector<double>* GapLog::column(const std::string& name) const {
+  for (const ColumnSpec& spec : columnSpecs()) {
+    if (name == spec.name) return &(this->*spec.member);
+  }
+  return nullptr;
+}
+
+std::vector<double>* GapLog::column(const std::string& name) {
+  return const_cast<std::vector<double>*>(static_cast<const GapLog*>(this)->column(name));
 }
 
 double GapLog::medianStep() const {
@@ -344,6 +358,10 @@ GapLog readCsvLog(const std::string& path, const LogMapping& mapping) {
                         std::to_string(rows.size()) + " rows with NaN/Inf/empty cells (" +
                         lineList(skipped_lines, "lines") + "; cells by column: " + by_column + ")");
   }
+  // A heading that wraps at +-pi, unwrapped (before any shift interpolates across a wrap); columns logged
+  // late, moved back onto the time base (the mapping's `shift:`).
+  unwrapHeading(&log);
+  applyColumnShifts(&log, mapping);
   if (log.size() < kMinValidRows) {
     throw InputError(path + ": only " + std::to_string(log.size()) + " valid data rows (" +
                      std::to_string(rows.size()) + " read, " + std::to_string(log.rows_skipped) +

@@ -12,8 +12,8 @@ namespace lane_keeping {
 namespace {
 
 const std::vector<std::string>& schemaColumns() {
-  static const std::vector<std::string> names{"t",     "x",          "y",         "psi",   "yaw_rate", "v",
-                                              "ay",    "delta",      "delta_rate", "delta_des", "torque"};
+  static const std::vector<std::string> names{"t",  "x",     "y",          "psi",       "yaw_rate", "v",
+                                              "vy", "ay",    "delta",      "delta_rate", "delta_des", "torque"};
   return names;
 }
 
@@ -98,7 +98,7 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
       const std::string key = "log.columns." + schema;
       if (!isSchemaColumn(schema) || schema == "t") {
         fail(key, at(file, item.first),
-             "is not a schema column (x, y, psi, yaw_rate, v, ay, delta, delta_rate, delta_des, torque; time goes "
+             "is not a schema column (x, y, psi, yaw_rate, v, vy, ay, delta, delta_rate, delta_des, torque; time goes "
              "under log.time)");
       }
       ColumnMapping c;
@@ -111,6 +111,16 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
           if (f == "column") c.column = text(field.second, key + ".column", file);
           else if (f == "scale") c.scale = number(field.second, key + ".scale", file);
           else if (f == "offset") c.offset = number(field.second, key + ".offset", file);
+          else if (f == "shift") {
+            c.shift = number(field.second, key + ".shift", file);
+            if (std::fabs(c.shift) > kMaxColumnShift) {
+              fail(key + ".shift", at(file, field.second),
+                   "= " + YAML::Dump(field.second) + " s: a latency of more than " +
+                       std::to_string(static_cast<int>(kMaxColumnShift)) +
+                       " s is a clock error, not a sensor's delay (|shift| <= " +
+                       std::to_string(static_cast<int>(kMaxColumnShift)) + " s)");
+            }
+          }
           else if (f == "unscaled") {
             try {
               c.unscaled = field.second.as<bool>();
@@ -119,7 +129,7 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
             }
           }
           else if (f == "unit" || f == "note") continue;  // documentation only
-          else fail(key + "." + f, at(file, field.first), "is not a column mapping key (column, scale, offset, unscaled)");
+          else fail(key + "." + f, at(file, field.first), "is not a column mapping key (column, scale, offset, unscaled, shift)");
         }
       } else {
         fail(key, at(file, item.second), "must be a column name or {column: NAME, scale: A, offset: B}");

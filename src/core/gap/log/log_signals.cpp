@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/gap/log/time_holes.h"
 #include "lane_keeping/gap/log/window_weights.h"
 
 namespace lane_keeping {
@@ -158,9 +159,61 @@ double fourthDifferenceNoise(const std::vector<double>& v) {
   return std::sqrt(sum / (v.size() - 4) / 70.0);
 }
 
+namespace {
+
+using Stretches = std::vector<std::pair<std::size_t, std::size_t>>;
+
+/// f(t, v) on each stretch of samples, concatenated; f itself where there is one stretch.
+template <typename F>
+std::vector<double> perStretch(const Stretches& stretches, const std::vector<double>& t, const std::vector<double>& v,
+                               F f) {
+  if (stretches.size() <= 1 || v.size() != t.size()) return f(t, v);
+  std::vector<double> out;
+  out.reserve(t.size());
+  for (const auto& [begin, end] : stretches) {
+    const std::vector<double> ts(t.begin() + begin, t.begin() + end), vs(v.begin() + begin, v.begin() + end);
+    const std::vector<double> part = f(ts, vs);
+    out.insert(out.end(), part.begin(), part.end());
+  }
+  return out;
+}
+
+/// fourthDifferenceNoise over the fourth differences within each stretch.
+double noiseOver(const Stretches& stretches, const std::vector<double>& v) {
+  if (stretches.size() <= 1 || v.empty()) return fourthDifferenceNoise(v);  // (an absent channel: 0)
+  double sum = 0.0, terms = 0.0;
+  for (const auto& [begin, end] : stretches) {
+    if (end - begin < 8) continue;
+    for (std::size_t i = begin + 2; i + 2 < end; ++i) {
+      const double d = v[i - 2] - 4.0 * v[i - 1] + 6.0 * v[i] - 4.0 * v[i + 1] + v[i + 2];
+      sum += d * d;
+    }
+    terms += static_cast<double>(end - begin - 4);
+  }
+  return terms > 0.0 ? std::sqrt(sum / terms / 70.0) : 0.0;
+}
+
+}  // namespace
+
 LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
     : log_(std::move(log)), index_(log_.t), values_(kChannels), smoothed_(kChannels), noise_(kChannels, 0.0) {
   const auto& t = log_.t;
+  // Derivatives, smoothing and noise estimates stay within each stretch between holes of the time axis
+  // (time_holes.h): across a 5 s hole a derivative's window, a spline or a fourth difference invents what
+  // the car did, and the noise estimated across it was several times too high (the noise-only reference
+  // of a holed log then swallowed a steering friction's gap). A log without holes is one stretch.
+  const Stretches stretches = holeFreeStretches(t);
+  auto smoothed = [&](const std::vector<double>& v, double half_width, int order) {
+    return perStretch(stretches, t, v, [&](const std::vector<double>& ts, const std::vector<double>& vs) {
+      return smoothedDerivative(ts, vs, half_width, order);
+    });
+  };
+  auto splineRate = [&](const std::vector<double>& v) {
+    return perStretch(stretches, t, v, [](const std::vector<double>& ts, const std::vector<double>& vs) {
+      return splineDerivative(ts, vs);
+    });
+  };
+  auto noiseOf = [&](const std::vector<double>& v) { return noiseOver(stretches, v); };
   values_[kX] = log_.x;
   values_[kY] = log_.y;
   values_[kPsi] = log_.psi;
@@ -173,31 +226,33 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   // Derived channels exist where their sources do (a partial log lacks some; has() says which).
   const bool pose = !log_.x.empty() && !log_.y.empty() && !log_.psi.empty();
   if (log_.hasSteeringRate()) values_[kDeltaRate] = log_.delta_rate;
-  else if (!log_.delta.empty()) values_[kDeltaRate] = smoothedDerivative(t, log_.delta, windows.steering, 1);
+  else if (!log_.delta.empty()) values_[kDeltaRate] = smoothed(log_.delta, windows.steering, 1);
   if (!values_[kDeltaRate].empty()) {
-    values_[kDeltaAcceleration] = smoothedDerivative(t, values_[kDeltaRate], windows.steering, 1);
+    values_[kDeltaAcceleration] = smoothed(values_[kDeltaRate], windows.steering, 1);
   }
   // delta_des is computed by the tracker, not measured: differentiated through a spline, not smoothed,
   // so that the identification excitation's top frequencies keep their rate (splineDerivative).
-  if (!log_.delta_des.empty()) values_[kDeltaDesRate] = splineDerivative(t, log_.delta_des);
-  if (!log_.yaw_rate.empty()) values_[kYawAcceleration] = smoothedDerivative(t, log_.yaw_rate, windows.steering, 1);
-  if (!log_.x.empty()) values_[kXDot] = smoothedDerivative(t, log_.x, windows.position, 1);
-  if (!log_.y.empty()) values_[kYDot] = smoothedDerivative(t, log_.y, windows.position, 1);
-  if (pose) {
+  if (!log_.delta_des.empty()) values_[kDeltaDesRate] = splineRate(log_.delta_des);
+  if (!log_.yaw_rate.empty()) values_[kYawAcceleration] = smoothed(log_.yaw_rate, windows.steering, 1);
+  if (!log_.x.empty()) values_[kXDot] = smoothed(log_.x, windows.position, 1);
+  if (!log_.y.empty()) values_[kYDot] = smoothed(log_.y, windows.position, 1);
+  if (log_.hasLateralVelocity()) {
+    values_[kSigma1] = log_.vy;  // measured (an INS, an optical sensor): not differentiated from the pose
+  } else if (pose) {
     values_[kSigma1].resize(t.size());
     for (std::size_t i = 0; i < t.size(); ++i) {
       values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
     }
   }
-  if (!log_.v.empty()) values_[kSpeedRate] = smoothedDerivative(t, log_.v, windows.position, 1);
-  if (!log_.x.empty()) smoothed_[kX] = smoothedDerivative(t, log_.x, windows.pose, 0);
-  if (!log_.y.empty()) smoothed_[kY] = smoothedDerivative(t, log_.y, windows.pose, 0);
-  if (!log_.psi.empty()) smoothed_[kPsi] = smoothedDerivative(t, log_.psi, windows.pose, 0);
-  if (!log_.delta.empty()) smoothed_[kDelta] = smoothedDerivative(t, log_.delta, windows.steering, 0);
-  if (log_.hasSteeringRate()) smoothed_[kDeltaRate] = smoothedDerivative(t, log_.delta_rate, windows.steering, 0);
+  if (!log_.v.empty()) values_[kSpeedRate] = smoothed(log_.v, windows.position, 1);
+  if (!log_.x.empty()) smoothed_[kX] = smoothed(log_.x, windows.pose, 0);
+  if (!log_.y.empty()) smoothed_[kY] = smoothed(log_.y, windows.pose, 0);
+  if (!log_.psi.empty()) smoothed_[kPsi] = smoothed(log_.psi, windows.pose, 0);
+  if (!log_.delta.empty()) smoothed_[kDelta] = smoothed(log_.delta, windows.steering, 0);
+  if (log_.hasSteeringRate()) smoothed_[kDeltaRate] = smoothed(log_.delta_rate, windows.steering, 0);
   else smoothed_[kDeltaRate] = values_[kDeltaRate];
   for (Channel c : {kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration}) {
-    noise_[c] = fourthDifferenceNoise(values_[c]);
+    noise_[c] = noiseOf(values_[c]);
   }
   double step = log_.medianStep();
   if (!(step > 0.0)) step = 0.01;
@@ -205,11 +260,12 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
     const double n = std::max(5.0, 2.0 * half_width / step + 1.0);
     return sigma * std::sqrt(3.0 / (n * half_width * half_width));
   };
-  noise_[kDeltaRate] = log_.hasSteeringRate() ? fourthDifferenceNoise(values_[kDeltaRate])
+  noise_[kDeltaRate] = log_.hasSteeringRate() ? noiseOf(values_[kDeltaRate])
                                               : derivativeNoise(noise_[kDelta], windows.steering);
-  noise_[kSigma1] = derivativeNoise(std::max(noise_[kX], noise_[kY]), windows.position);
+  noise_[kSigma1] = log_.hasLateralVelocity() ? noiseOf(log_.vy)
+                                              : derivativeNoise(std::max(noise_[kX], noise_[kY]), windows.position);
   if (!log_.v.empty()) {
-    const std::vector<double> v = smoothedDerivative(t, log_.v, windows.position, 0);
+    const std::vector<double> v = smoothed(log_.v, windows.position, 0);
     double mean = 0.0;
     for (double x : v) mean += x;
     mean /= static_cast<double>(v.size());

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <optional>
 
+#include "lane_keeping/gap/log/time_holes.h"
 #include "lane_keeping/gap/replay/column_observer.h"
 #include "lane_keeping/gap/replay/replay_shooting.h"
 
@@ -28,8 +29,15 @@ SubsystemReplay replayActuator(const SimConfig& config, const LogSignals& log, c
   double z = 0.0, previous_t = 0.0, previous_e = 0.0;
   bool started = false;
   std::vector<double> base;
+  // Across a hole in the log's time axis (time_holes.h) the integral ran on unlogged: after it, its value
+  // is as unknown as at the start, so each stretch between holes has an offset of its own (one offset for
+  // the whole log left a 5 s hole's jump of k_i z in the residual: an actuator "gap" of 0.22).
+  const auto stretches = holeFreeStretches(times);
+  std::vector<std::size_t> stretch_of;  // per trace sample
+  std::size_t stretch = 0;
   for (std::size_t i = 0; i < times.size(); ++i) {
     const double t = times[i];
+    while (stretch + 1 < stretches.size() && i >= stretches[stretch].second) ++stretch;
     if (t - lag < log.start()) continue;
     // The measured angle and rate: nearest samples carried along their smoothed curves (interpolated
     // 0.1 ms back, their noise was coloured and read as excess; LogSignals::nearestAlongSmoothed).
@@ -52,13 +60,17 @@ SubsystemReplay replayActuator(const SimConfig& config, const LogSignals& log, c
     trace.t.push_back(t);
     trace.measured.push_back(log.samples(C::kTorque)[i]);
     base.push_back(p.kp() * e + p.kd() * e_rate + p.ki() * z);  // eq 12 with z(start) = 0
+    stretch_of.push_back(stretch);
   }
-  // The integral's value at the start of the log is unknown: a constant torque offset k_i z0, fitted.
-  double offset = 0.0;
-  for (std::size_t k = 0; k < base.size(); ++k) offset += trace.measured[k] - base[k];
-  if (!base.empty() && p.ki() != 0.0) offset /= base.size();
-  else offset = 0.0;
-  for (double b : base) trace.predicted.push_back(b + offset);
+  // The integral's value at the start of the log (and after each hole) is unknown: a constant torque
+  // offset k_i z0 per stretch, fitted.
+  std::vector<double> offset(stretches.size() + 1, 0.0), count(stretches.size() + 1, 0.0);
+  for (std::size_t k = 0; k < base.size(); ++k) {
+    offset[stretch_of[k]] += trace.measured[k] - base[k];
+    count[stretch_of[k]] += 1.0;
+  }
+  for (std::size_t s = 0; s < offset.size(); ++s) offset[s] = count[s] > 0.0 && p.ki() != 0.0 ? offset[s] / count[s] : 0.0;
+  for (std::size_t k = 0; k < base.size(); ++k) trace.predicted.push_back(base[k] + offset[stretch_of[k]]);
   out.traces.push_back(std::move(trace));
   return out;
 }

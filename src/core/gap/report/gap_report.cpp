@@ -2,13 +2,15 @@
 //
 // Layout (keys in this order; every GapReport field appears):
 //   { "format": "lane_keeping.gap_report", "version": 1,
-//     "logs": [..], "heldout": [..], "rows_used": N, "rows_skipped": N, "notes": [..],
-//     "skipped_subsystems": [{"name", "reason"}], "not_testable": [{"effect", "reason"}],
+//     "logs": [..], "heldout": [..], "logs_t0": {log: first sample [s]}, "rows_used": N, "rows_skipped": N,
+//     "notes": [..], "skipped_subsystems": [{"name", "reason"}], "not_testable": [{"effect", "reason"}],
+//     "input_checks": [{"log", "channel", "kind", "detail", "t0", "t1" (a hole's; only for holes)}],
 //     "split": { "method", "coverage": {kind: held-out share} },
 //     "detection": { "draws", "false_alarm_rate", "heldout": {"value", "p_value", "null_median", "null_max",
 //                    "detected"}, "training": {..} },
 //     "where":   { "subsystem", "subsystems": [{"name", "nrmse", "noise_floor", "outputs": [..]}],
-//                  "windows": [{"log", "t0", "t1", "share"}], "onset" (optional), "bands": [{"f0", "f1", "share"}],
+//                  "windows": [{"log", "t0", "t1", "share", "log_t0"}], "onset" (optional),
+//                  "bands": [{"f0", "f1", "share"}],
 //                  "regimes": [{"variable", "lo", "hi", "share", "time_share"}] },
 //     "ranking": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {"key": "value"},
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
@@ -16,7 +18,8 @@
 //     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..],
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
 //                  (only when a candidate explains part of the gap) },
-//     "how_far": { "before", "after", "shrink", "subsystems_before": {}, "subsystems_after": {},
+//     "how_far": { "before", "after", "shrink", "not_run" (why, only when the closed loop was not replayed:
+//                  before and after are null then), "subsystems_before": {}, "subsystems_after": {},
 //                  "subsystems_noise_reference": {} },
 //     "wall_seconds": [{"stage", "seconds"}] }
 // how_far.shrink = 1 - after / before is derived (written for readers, ignored when read back).
@@ -63,7 +66,11 @@ OrderedJson toJson(const GapWhere& w) {
   }
   out["windows"] = OrderedJson::array();
   for (const WindowShare& s : w.windows)
-    out["windows"].push_back({{"log", s.log}, {"t0", number(s.t0)}, {"t1", number(s.t1)}, {"share", number(s.share)}});
+    out["windows"].push_back({{"log", s.log},
+                              {"t0", number(s.t0)},
+                              {"t1", number(s.t1)},
+                              {"share", number(s.share)},
+                              {"log_t0", number(s.log_t0)}});
   if (std::isfinite(w.onset)) out["onset"] = w.onset;
   out["bands"] = OrderedJson::array();
   for (const BandShare& s : w.bands)
@@ -134,6 +141,7 @@ OrderedJson toJson(const ClosedLoopGap& h) {
   out["before"] = number(h.before);
   out["after"] = number(h.after);
   out["shrink"] = (std::isfinite(h.before) && h.before > 0.0) ? number(1.0 - h.after / h.before) : OrderedJson(nullptr);
+  if (!h.not_run.empty()) out["not_run"] = h.not_run;
   out["subsystems_before"] = numberMap(h.subsystems_before);
   out["subsystems_after"] = numberMap(h.subsystems_after);
   out["subsystems_noise_reference"] = numberMap(h.subsystems_noise_reference);
@@ -146,6 +154,7 @@ OrderedJson toJson(const GapReport& r) {
   out["version"] = kVersion;
   out["logs"] = r.logs;
   out["heldout"] = r.heldout;
+  out["logs_t0"] = numberMap(r.logs_t0);
   out["rows_used"] = r.rows_used;
   out["rows_skipped"] = r.rows_skipped;
   out["notes"] = r.notes;
@@ -153,6 +162,15 @@ OrderedJson toJson(const GapReport& r) {
   for (const auto& s : r.skipped_subsystems) out["skipped_subsystems"].push_back({{"name", s.name}, {"reason", s.reason}});
   out["not_testable"] = OrderedJson::array();
   for (const auto& e : r.not_testable) out["not_testable"].push_back({{"effect", e.effect}, {"reason", e.reason}});
+  out["input_checks"] = OrderedJson::array();
+  for (const auto& c : r.input_checks) {
+    OrderedJson entry{{"log", c.log}, {"channel", c.channel}, {"kind", c.kind}, {"detail", c.detail}};
+    if (c.kind == "hole") {
+      entry["t0"] = number(c.t0);
+      entry["t1"] = number(c.t1);
+    }
+    out["input_checks"].push_back(entry);
+  }
   out["split"] = OrderedJson{{"method", r.split.method}, {"coverage", numberMap(r.split.coverage)}};
   out["detection"] = OrderedJson{{"draws", r.detection.draws},
                                  {"false_alarm_rate", number(r.detection.false_alarm_rate)},
@@ -317,6 +335,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   GapReport rep;
   r.get(j, root, "logs", &rep.logs);
   r.get(j, root, "heldout", &rep.heldout);
+  r.get(j, root, "logs_t0", &rep.logs_t0);
   r.get(j, root, "rows_used", &rep.rows_used);
   r.get(j, root, "rows_skipped", &rep.rows_skipped);
   r.get(j, root, "notes", &rep.notes);
@@ -331,6 +350,16 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "effect", &u.effect, true);
     r.get(e, p, "reason", &u.reason);
     rep.not_testable.push_back(u);
+  });
+  r.forEach(j, root, "input_checks", false, [&](const Json& e, const std::string& p) {
+    InputCheckEntry c;
+    r.get(e, p, "log", &c.log);
+    r.get(e, p, "channel", &c.channel);
+    r.get(e, p, "kind", &c.kind, true);
+    r.get(e, p, "detail", &c.detail);
+    r.get(e, p, "t0", &c.t0);
+    r.get(e, p, "t1", &c.t1);
+    rep.input_checks.push_back(c);
   });
   if (const Json* s = r.member(j, root, "split", false)) {
     r.get(*s, root + ".split", "method", &rep.split.method);
@@ -373,6 +402,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "t0", &s.t0, true);
     r.get(e, p, "t1", &s.t1, true);
     r.get(e, p, "share", &s.share, true);
+    r.get(e, p, "log_t0", &s.log_t0);
     rep.where.windows.push_back(s);
   });
   r.get(w, wp, "onset", &rep.where.onset);
@@ -436,6 +466,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     const std::string hp = root + ".how_far";
     r.get(*h, hp, "before", &rep.how_far.before);
     r.get(*h, hp, "after", &rep.how_far.after);
+    r.get(*h, hp, "not_run", &rep.how_far.not_run);
     r.get(*h, hp, "subsystems_before", &rep.how_far.subsystems_before);
     r.get(*h, hp, "subsystems_after", &rep.how_far.subsystems_after);
     r.get(*h, hp, "subsystems_noise_reference", &rep.how_far.subsystems_noise_reference);

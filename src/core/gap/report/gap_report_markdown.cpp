@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
 #include <sstream>
 #include <system_error>
 
@@ -201,13 +202,19 @@ void writeWhere(std::ostream& out, const GapReport& r) {
     out << "\n";
   }
   if (!w.windows.empty()) {
-    out << "Time windows carrying most of the residual energy:\n\n| log | t0 [s] | t1 [s] | share |\n|---|---:|---:|---:|\n";
+    // Seconds since each log's first sample: a log stamped in epoch time (t ~ 1.7e9 s) read 1.692e+09 here.
+    out << "Time windows carrying most of the residual energy (seconds since the log's first sample):\n\n"
+           "| log | from [s] | to [s] | share |\n|---|---:|---:|---:|\n";
+    std::map<std::string, double> starts;
     for (std::size_t i = 0; i < w.windows.size() && i < kWindowsShown; ++i) {
       const WindowShare& s = w.windows[i];
-      out << "| " << s.log << " | " << num(s.t0) << " | " << num(s.t1) << " | " << percent(s.share) << " |\n";
+      auto since = [&](double t) { return num(std::round(100.0 * (t - s.log_t0)) / 100.0, "%.6g"); };  // to 10 ms
+      out << "| " << cell(s.log) << " | " << since(s.t0) << " | " << since(s.t1) << " | " << percent(s.share) << " |\n";
+      if (s.log_t0 != 0.0) starts[s.log] = s.log_t0;
     }
     if (w.windows.size() > kWindowsShown)
       out << "\n(" << w.windows.size() - kWindowsShown << " more windows in report.json)\n";
+    for (const auto& [log, t0] : starts) out << "\n" << log << " starts at t = " << num(t0, "%.3f") << " s in its own time.\n";
     out << "\n";
   }
   if (!w.bands.empty()) {
@@ -229,8 +236,12 @@ void writeWhere(std::ostream& out, const GapReport& r) {
 void writeHowFar(std::ostream& out, const GapReport& r) {
   const ClosedLoopGap& h = r.how_far;
   out << "## How far (held-out data)\n\n";
-  out << "Closed-loop replay gap: " << num(h.before) << " → " << num(h.after) << " (shrink "
-      << percent(shrinkOf(h.before, h.after)) << ")\n\n";
+  if (!h.not_run.empty()) {
+    out << "Closed-loop replay gap: not run (" << h.not_run << ")\n\n";
+  } else {
+    out << "Closed-loop replay gap: " << num(h.before) << " → " << num(h.after) << " (shrink "
+        << percent(shrinkOf(h.before, h.after)) << ")\n\n";
+  }
   std::vector<std::string> names;
   for (const auto& [name, value] : h.subsystems_before) names.push_back(name);
   for (const auto& [name, value] : h.subsystems_after)
@@ -254,6 +265,19 @@ void writeHowFar(std::ostream& out, const GapReport& r) {
     const double reference = n == h.subsystems_noise_reference.end() ? 0.0 : n->second;
     out << "| " << cell(name) << " | " << num(before) << " | " << num(after) << " | " << num(reference) << " | "
         << percent(shrinkOf(net(before, reference), net(after, reference))) << " |\n";
+  }
+  out << "\n";
+}
+
+void writeInputChecks(std::ostream& out, const GapReport& r) {
+  out << "## Input checks\n\n";
+  if (r.input_checks.empty()) {
+    out << "Nothing odd found in the logs (holes, stuck channels, sample rates, units, speed; docs/gap.md, "
+           "\"Inputs\").\n\n";
+    return;
+  }
+  for (const InputCheckEntry& c : r.input_checks) {
+    out << "- " << c.log << ", " << c.channel << " (" << c.kind << "): " << c.detail << "\n";
   }
   out << "\n";
 }
@@ -304,6 +328,7 @@ void writeGapReportMarkdown(const std::string& dir, const GapReport& report, con
   std::ostringstream out;
   out << "# Sim-to-real gap report\n\n";
   writeVerdict(out, report);
+  writeInputChecks(out, report);
   writeRanking(out, report);
   writeWhere(out, report);
   writeHowFar(out, report);

@@ -136,6 +136,9 @@ TEST(PartialLog, TheDiagnosisRunsWhatTheLogFeedsAndSaysWhatItSkipped) {
   EXPECT_EQ(ranked, (std::set<std::string>{"cornering_stiffness", "road_friction"}));
   EXPECT_EQ(r.where.subsystem, "chassis");
   EXPECT_EQ(r.verdict.effect, "road_friction") << r.verdict.reason;
+  // No closed loop without the tracker's output: "not run (why)", not "0 -> 0" (issue 46).
+  EXPECT_TRUE(std::isnan(r.how_far.before) && std::isnan(r.how_far.after));
+  EXPECT_EQ(r.how_far.not_run, "the logs cannot drive the closed loop: partial.csv: the log has no delta_des");
   // Round trip of the new fields.
   const std::string path = testing::TempDir() + "partial_report.json";
   writeGapReportJson(path, r);

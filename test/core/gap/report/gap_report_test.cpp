@@ -344,6 +344,66 @@ TEST(GapReportMarkdown, MentionsVerdictOverlayEveryRankedEffectAndExistingPlots)
                       "drive one): road_friction.")) << md;
 }
 
+/// The fields for real logs (issue 46, 48): input checks, each log's start, and a closed loop that did not run.
+GapReport realLogReport() {
+  GapReport r = sampleReport();
+  const double epoch = 1692000000.0;  // a log stamped in epoch time
+  r.logs_t0 = {{"run.csv", epoch}, {"run2.csv", 0.25}};
+  r.where.windows = {{"run.csv", epoch + 12.5, epoch + 14.0, 0.41, epoch}, {"run.csv", epoch + 3.0, epoch + 4.5, 0.2, epoch}};
+  InputCheckEntry hole{"run.csv", "t", "hole", "no samples for 5 s (2500 median steps) from 6 s to 11 s after the log's start",
+                       epoch + 6.0, epoch + 11.0};
+  InputCheckEntry stuck;
+  stuck.log = "run.csv";
+  stuck.channel = "delta";
+  stuck.kind = "stuck";
+  stuck.detail = "delta is constant at 0 rad while delta_des implies it moves by 0.012 rad RMS";
+  r.input_checks = {hole, stuck};
+  r.how_far.before = r.how_far.after = std::numeric_limits<double>::quiet_NaN();
+  r.how_far.not_run = "the logs cannot drive the closed loop: run.csv: the log has no delta_des";
+  return r;
+}
+
+TEST(GapReportJson, RealLogFieldsRoundTrip) {
+  const GapReport r = realLogReport();
+  const std::string path = testing::TempDir() + "gr_real.json";
+  writeGapReportJson(path, r);
+  const GapReport back = readGapReportJson(path);
+  expectSame(r, back);
+  EXPECT_EQ(back.logs_t0, r.logs_t0);
+  ASSERT_EQ(back.where.windows.size(), 2u);
+  EXPECT_EQ(back.where.windows[0].log_t0, 1692000000.0);
+  EXPECT_EQ(back.where.windows[0].t0, 1692000012.5);  // DESIGN §5's window stays in the log's own time
+  ASSERT_EQ(back.input_checks.size(), 2u);
+  EXPECT_EQ(back.input_checks[0].kind, "hole");
+  EXPECT_EQ(back.input_checks[0].t1, 1692000011.0);
+  EXPECT_EQ(back.input_checks[1].channel, "delta");
+  EXPECT_EQ(back.input_checks[1].detail, r.input_checks[1].detail);
+  EXPECT_TRUE(std::isnan(back.input_checks[1].t0));
+  EXPECT_EQ(back.how_far.not_run, r.how_far.not_run);
+  const Json j = Json::parse(readText(path));
+  EXPECT_TRUE(j["how_far"]["before"].is_null());
+  EXPECT_EQ(j["input_checks"][1].count("t0"), 0u);  // only holes carry where they are
+  EXPECT_EQ(j["logs_t0"]["run.csv"].get<double>(), 1692000000.0);
+}
+
+TEST(GapReportMarkdown, TimesSinceTheLogsStartInputChecksAndAClosedLoopThatDidNotRun) {
+  const std::string dir = tempDir("gr_md_real");
+  writeGapReportMarkdown(dir, realLogReport());
+  const std::string md = readText(dir + "/report.md");
+  EXPECT_TRUE(has(md, "| run.csv | 12.5 | 14 | 41.0 % |")) << md;  // not 1.692e+09
+  EXPECT_FALSE(has(md, "e+09")) << md;
+  EXPECT_TRUE(has(md, "run.csv starts at t = 1692000000.000 s in its own time.")) << md;
+  EXPECT_TRUE(has(md, "## Input checks\n\n- run.csv, t (hole): no samples for 5 s")) << md;
+  EXPECT_TRUE(has(md, "- run.csv, delta (stuck): delta is constant at 0 rad")) << md;
+  EXPECT_TRUE(has(md, "Closed-loop replay gap: not run (the logs cannot drive the closed loop: run.csv: the log has "
+                      "no delta_des)"))
+      << md;
+  EXPECT_FALSE(has(md, "Closed-loop replay gap: n/a")) << md;
+  // A report without findings says that the logs were checked.
+  writeGapReportMarkdown(dir, sampleReport());
+  EXPECT_TRUE(has(readText(dir + "/report.md"), "## Input checks\n\nNothing odd found in the logs")) << md;
+}
+
 TEST(GapReportMarkdown, UnexplainedVerdictAndNonFiniteNumbers) {
   GapReport report = sampleReport();
   report.verdict.effect = "unexplained";
