@@ -179,3 +179,15 @@ def test_a_schedule_without_lookahead_raises_schedule_error(lk):
         lk.simulate(overrides=[a for a in args if a != "--set"])
     assert str(error.value) == stderr[len("lk_simulate: "):].rstrip("\n")
     assert isinstance(error.value, RuntimeError)
+
+
+def test_a_lane_given_as_a_numpy_array(lk, tmp_path):
+    path = os.path.join(SCENARIOS, "waypoints.yaml")
+    _, _, expected = lk_simulate_csv(tmp_path, "waypoints", "--config", path, "--set", "simulation.duration=4")
+    points = np.array([[0.0, 0.0], [40.0, 0.0], [80.0, 1.0], [120.0, 2.0], [160.0, 2.0], [260.0, 2.0]])
+    run = lk.simulate([path, {"path": {"waypoints": points}}], overrides={"simulation.duration": 4}, as_frame=False)
+    assert csv_text(lk.LOG_COLUMNS, np.column_stack([run.log[c] for c in lk.LOG_COLUMNS])) == expected
+    # The log written by simulate(out=...) is lk_simulate's file, byte for byte.
+    written = tmp_path / "written.csv"
+    lk.simulate(path, overrides={"simulation.duration": 4}, log=False, out=written)
+    assert written.read_text() == expected

@@ -113,11 +113,12 @@ Job jobOf(py::handle layers, py::handle changes) {
   return job;
 }
 
-py::dict simulate(py::handle layers, py::handle changes, bool with_log) {
+py::dict simulate(py::handle layers, py::handle changes, bool with_log, const std::string& csv_path) {
   Job job = jobOf(layers, changes);
   {
     py::gil_scoped_release release;
     run(job);
+    if (!csv_path.empty()) writeLogCsv(csv_path, job.result.rows);  // lk_simulate --out's writer
   }
   return resultDict(job, with_log);
 }
@@ -161,7 +162,9 @@ std::string effectiveConfig(py::handle layers, bool with_docs) {
 
 void bindSimulation(py::module_& m) {
   m.def("simulate", &simulate, py::arg("layers"), py::arg("changes"), py::arg("with_log") = true,
-        "One closed-loop run (lk_simulate): a dict with the log's columns and values, the summary and the changes.");
+        py::arg("csv_path") = std::string(),
+        "One closed-loop run (lk_simulate): a dict with the log's columns and values, the summary and the changes; "
+        "with csv_path, the log written there as lk_simulate --out writes it.");
   m.def("simulate_many", &simulateMany, py::arg("layer_lists"), py::arg("change_lists"), py::arg("threads") = 1,
         py::arg("with_log") = true, "Runs on `threads` threads without the GIL; results in the order given.");
   m.def("effective_config", &effectiveConfig, py::arg("layers"), py::arg("with_docs") = false,

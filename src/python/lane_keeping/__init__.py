@@ -16,6 +16,11 @@ srv) and dynamic_reconfigure (cfg) modules; the API is imported on first use, so
 lane_keeping.msg` (the rostests, dynamic_reconfigure's client) stays as light as it was.
 """
 
+# Imported without the relay (a process spawned by multiprocessing inherits the relay's sys.path entry for this
+# folder, ahead of the devel space: Dask's workers do), the package still finds its other half, the extension and
+# the message modules in the devel space's lane_keeping folder on sys.path.
+__path__ = __import__("pkgutil").extend_path(__path__, __name__)
+
 _API = {
     "simulate": "simulation",
     "simulate_many": "simulation",

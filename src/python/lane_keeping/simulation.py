@@ -58,7 +58,7 @@ def _log_of(result, as_frame):
     return {name: values[:, i] for i, name in enumerate(LOG_COLUMNS)}
 
 
-def simulate(config=None, changes=None, *, overrides=None, log=True, as_frame=True):
+def simulate(config=None, changes=None, *, overrides=None, log=True, as_frame=True, out=None):
     """One closed-loop run, as `lk_simulate --config ... --set ... --change ... --out run.csv`.
 
     config:    a path to a YAML file, YAML text, a nested dict of the configuration schema (dotted keys
@@ -67,12 +67,14 @@ def simulate(config=None, changes=None, *, overrides=None, log=True, as_frame=Tr
     overrides: {"key": value} or ["key=value", ...], applied last (lk_simulate --set)
     log:       False: keep only the summary (faster for sweeps)
     as_frame:  the log as a pandas DataFrame (True) or a dict of numpy arrays (False)
+    out:       a path: also write the log there as CSV, by lk_simulate --out's own writer
 
     Returns a Run (`log, summary = simulate(...)`). A diverged run is a result, not an error (status
     "diverged"). Raises ConfigError naming every bad key (the message lk_simulate prints), ScheduleError
     when the delays leave the lockstep schedule no lookahead.
     """
-    result = _lane_keeping.simulate(config_layers(config, overrides), change_texts(changes), bool(log))
+    result = _lane_keeping.simulate(config_layers(config, overrides), change_texts(changes), bool(log),
+                                    "" if out is None else os.fspath(out))
     return Run(result, as_frame)
 
 
