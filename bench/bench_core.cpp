@@ -1,7 +1,13 @@
-// Benchmark of the core simulator (issue #2): the closed loop's real-time factor (simulated seconds
-// per wall second, one core) for every tire model at dt = 1e-4 s and 1e-5 s, and the cost of one
-// model derivative. Prints a table; numbers go in docs/benchmarks.md. Not a test: it asserts nothing.
+// Benchmark of the core simulator (issues #2, 49): the closed loop's real-time factor (simulated seconds
+// per wall second, one core) for every tire model at dt = 1e-4 s and 1e-5 s, the cost of one closed-loop
+// step (plant + controllers + delay lines + the 1 kHz log, per plant step at dt = 1e-4 s with one torque
+// sample per step), and the cost of one model derivative. The step and the derivative are timed in the
+// thread's CPU time as well as in wall time: on a shared machine the CPU time moves less with a neighbour's
+// load (it still counts the cache and core a neighbour shares). Prints a table; numbers go in
+// docs/benchmarks.md. Not a test: it asserts nothing.
 //   lk_bench_core [--duration SECONDS] [--repeat N] [--tire MODEL]
+#include <time.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -19,6 +25,13 @@ using namespace lane_keeping;
 namespace {
 
 double seconds(std::chrono::steady_clock::duration d) { return std::chrono::duration<double>(d).count(); }
+
+/// The calling thread's CPU time [s].
+double threadSeconds() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 SimConfig fig6(const std::string& tire, double step, double duration) {
   // The paper's Fig 6 case (config/scenarios/fig6.yaml) with the tire model swapped.
@@ -49,14 +62,14 @@ double derivativeNanoseconds(const std::string& tire) {
   initial.sigma2 = 0.05;
   Eigen::VectorXd x = model.initialState(initial), x_dot(model.stateSize());
   const int n = 2000000;
-  const auto start = std::chrono::steady_clock::now();
+  const double start = threadSeconds();
   double sink = 0.0;
   for (int i = 0; i < n; ++i) {
     x[kDelta] = 0.01 + 1e-9 * (i & 1023);
     model.derivative(x.data(), 1.0, x_dot.data());
     sink += x_dot[kSigma3];
   }
-  const double ns = seconds(std::chrono::steady_clock::now() - start) / n * 1e9;
+  const double ns = (threadSeconds() - start) / n * 1e9;  // CPU time
   if (sink == 12345.678) std::printf(" ");
   return ns;
 }
@@ -84,24 +97,34 @@ int main(int argc, char** argv) {
   std::printf("lane_keeping core benchmark: Fig 6 closed loop (brush/LuGre tires), %g s simulated, best of %d,\n"
               "one core, log at 1 kHz; distributed LuGre with N = 50 bristles per direction.\n\n",
               duration, repeat);
-  std::printf("%-18s %14s %16s %16s\n", "tire model", "derivative ns", "RTF dt=1e-4 s", "RTF dt=1e-5 s");
+  std::printf("%-18s %14s %14s %14s %16s %16s\n", "tire model", "derivative ns", "step ns (CPU)", "step ns (wall)",
+              "RTF dt=1e-4 s", "RTF dt=1e-5 s");
   for (const std::string tire : {"brush", "lugre_lumped", "lugre_distributed", "magic_formula"}) {
     if (!only.empty() && tire != only) continue;
     std::printf("%-18s %14.1f", tire.c_str(), derivativeNanoseconds(tire));
-    for (double step : {1e-4, 1e-5}) {
+    double rtf[2] = {0.0, 0.0}, step_cpu = 1e300, step_wall = 1e300;
+    for (int k = 0; k < 2; ++k) {
+      const double step = k == 0 ? 1e-4 : 1e-5;
       // dt = 1e-5 runs a tenth of the duration (same number of steps).
       const double simulated = step < 1e-4 ? duration / 10.0 : duration;
       const ClosedLoop loop(fig6(tire, step, simulated));
       double best = 1e300;
       for (int r = 0; r < repeat; ++r) {
         const auto start = std::chrono::steady_clock::now();
+        const double cpu_start = threadSeconds();
         const RunResult result = loop.run();
-        best = std::min(best, seconds(std::chrono::steady_clock::now() - start));
+        const double cpu = threadSeconds() - cpu_start;
+        const double wall = seconds(std::chrono::steady_clock::now() - start);
+        best = std::min(best, wall);
+        if (k == 0) {
+          step_cpu = std::min(step_cpu, cpu / result.plant_steps * 1e9);
+          step_wall = std::min(step_wall, wall / result.plant_steps * 1e9);
+        }
         if (result.diverged()) std::printf(" (diverged: %s)", result.message.c_str());
       }
-      std::printf(" %15.0fx", simulated / best);
+      rtf[k] = simulated / best;
     }
-    std::printf("\n");
+    std::printf(" %14.1f %14.1f %15.0fx %15.0fx\n", step_cpu, step_wall, rtf[0], rtf[1]);
     std::fflush(stdout);
   }
   return 0;

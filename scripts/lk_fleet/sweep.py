@@ -1,7 +1,13 @@
-"""The sweep command's tasks: one lk_simulate per point of a grid (--grid) and of Monte-Carlo draws (--monte-carlo,
---vary). On the client, the points (drawn from --seed, so that a rerun makes the same task ids), one task spec
-per point and the configuration checks; on a worker, sweep_task runs lk_simulate and stores the run's
-stability figures.
+"""The sweep command's tasks: one closed-loop run per point of a grid (--grid) and of Monte-Carlo draws
+(--monte-carlo, --vary). On the client, the points (drawn from --seed, so that a rerun makes the same task ids),
+one task spec per point and the configuration checks; on a worker, sweep_task runs the point and stores the
+run's stability figures.
+
+A point runs in the worker's own process through the Python module lane_keeping (docs/python_api.md): no
+process and no CSV per point, the same core code as lk_simulate and the same numbers. Where the module is not
+built (or LK_FLEET_SWEEP_ENGINE=process), each point runs one lk_simulate and is summarised from its CSV, as
+before; the two give the same figures, and a task's id does not depend on the engine, so either resumes the
+other's sweep.
 
 Depends on messages, storage, tool and results. sweep_task runs on the Dask workers (shipped by value: see
 cluster)."""
@@ -10,7 +16,9 @@ import itertools
 import math
 import os
 import re
+import sys
 import tempfile
+import time
 
 from .messages import UsageError
 from .results import file_digest, format_value, new_result, store_result, task_id
@@ -22,21 +30,15 @@ SIMULATE_DIVERGED = 3
 # Columns of the lk_simulate log a sweep point is summarised from.
 SWEEP_COLUMNS = ("t", "e_y", "delta", "torque")
 SWEEP_METRICS = ("max_abs_e_y", "rms_e_y", "late_rms_e_y", "max_abs_delta", "max_abs_torque")
+# "in-process" (the default where the module is built) or "process" (one lk_simulate per point).
+ENGINE_VARIABLE = "LK_FLEET_SWEEP_ENGINE"
 
 
-def summarize_run_csv(path, diverged):
+def summarize_columns(t, e_y, delta, torque, diverged):
     """Stability figures of one closed-loop log: peaks and RMS of the lateral error, steering angle and
     torque, over the whole run and its last quarter (decay or not), and whether it stayed bounded."""
     import numpy as np
-    with open(path, newline="") as f:
-        header = next(csv.reader(f))
-    missing = [c for c in SWEEP_COLUMNS if c not in header]
-    if missing:
-        raise ValueError(f"{path}: no column {', '.join(missing)} (found {', '.join(header)})")
-    columns = [header.index(c) for c in SWEEP_COLUMNS]
-    data = np.loadtxt(path, delimiter=",", skiprows=1, usecols=columns, ndmin=2)
-    t, e_y, delta, torque = (data[:, i] for i in range(len(SWEEP_COLUMNS)))
-    finite = bool(np.isfinite(data).all())
+    finite = bool(all(np.isfinite(c).all() for c in (t, e_y, delta, torque)))
     late = e_y[len(e_y) * 3 // 4:]
 
     def peak(x):
@@ -59,13 +61,90 @@ def summarize_run_csv(path, diverged):
     }
 
 
+def summarize_run_csv(path, diverged):
+    """summarize_columns of an lk_simulate log file."""
+    import numpy as np
+    with open(path, newline="") as f:
+        header = next(csv.reader(f))
+    missing = [c for c in SWEEP_COLUMNS if c not in header]
+    if missing:
+        raise ValueError(f"{path}: no column {', '.join(missing)} (found {', '.join(header)})")
+    columns = [header.index(c) for c in SWEEP_COLUMNS]
+    data = np.loadtxt(path, delimiter=",", skiprows=1, usecols=columns, ndmin=2)
+    return summarize_columns(*(data[:, i] for i in range(len(SWEEP_COLUMNS))), diverged)
+
+
+def module_path(lk_bin):
+    """The devel space's Python folder beside the tools' folder (DEVEL/lib/lane_keeping ->
+    DEVEL/lib/python3/dist-packages), where the build puts the package lane_keeping."""
+    return os.path.join(os.path.dirname(os.path.abspath(lk_bin)), "python3", "dist-packages")
+
+
+def import_lane_keeping(python_path):
+    """The module lane_keeping, from the environment (setup.bash) or else from `python_path`."""
+    try:
+        import lane_keeping
+        lane_keeping.simulate  # the API, not only the message modules of an older build
+        return lane_keeping
+    except (ImportError, AttributeError):
+        pass
+    for name in [n for n in sys.modules if n == "lane_keeping" or n.startswith("lane_keeping.")]:
+        del sys.modules[name]
+    if python_path not in sys.path:
+        sys.path.insert(0, python_path)
+    import lane_keeping
+    lane_keeping.simulate
+    return lane_keeping
+
+
+def sweep_engine(lk_bin):
+    """The engine of this sweep: in-process when the module imports here, else one process per point."""
+    if os.environ.get(ENGINE_VARIABLE, "in-process") == "process":
+        return "process"
+    try:
+        import_lane_keeping(module_path(lk_bin))
+        return "in-process"
+    except (ImportError, AttributeError, OSError):
+        return "process"
+
+
+def run_in_process(spec):
+    """One point through the module: (exit code as lk_simulate's, error text, summary or None)."""
+    lk = import_lane_keeping(spec["python_path"])
+    keep = os.path.join(spec["out"], "runs", spec["task_id"] + ".csv") if spec["keep_logs"] else None
+    try:
+        if keep is not None:
+            os.makedirs(os.path.dirname(keep), exist_ok=True)
+            partial = f"{keep}.{os.getpid()}.tmp"
+            run = lk.simulate(spec["inputs"]["config"], overrides=spec["inputs"]["sets"], as_frame=False, out=partial)
+            os.replace(partial, keep)  # atomic, as write_bytes_atomic
+        else:
+            run = lk.simulate(spec["inputs"]["config"], overrides=spec["inputs"]["sets"], as_frame=False)
+    except lk.ConfigError as exc:
+        return 2, f"lk_simulate: {exc}", None  # what lk_simulate prints and its exit status
+    except lk.LaneKeepingError as exc:
+        return 1, f"lk_simulate: {exc}", None
+    code = SIMULATE_DIVERGED if run.diverged else 0
+    summary = summarize_columns(*(run.log[c] for c in SWEEP_COLUMNS), diverged=run.diverged)
+    return code, "", summary
+
+
 def sweep_task(spec):
-    """Worker side: lk_simulate at one point, summarised; the log itself is kept only if asked."""
+    """Worker side: the closed loop at one point, summarised; the log itself is kept only if asked."""
     out, tid = spec["out"], spec["task_id"]
+    if spec.get("engine") == "in-process":
+        start = time.monotonic()
+        code, error, summary = run_in_process(spec)
+        result = new_result(spec, code, "", error, time.monotonic() - start, ok_codes=(0, SIMULATE_DIVERGED))
+        result["engine"] = "in-process"
+        if summary is not None:
+            result["summary"] = summary
+        return store_result(out, result)
     with tempfile.TemporaryDirectory(prefix="lk_fleet_") as tmp:
         log = os.path.join(tmp, "run.csv")
         code, stdout, stderr, wall = run_tool(spec["argv"] + ["--out", log, "--quiet"], spec["timeout"])
         result = new_result(spec, code, stdout, stderr, wall, ok_codes=(0, SIMULATE_DIVERGED))
+        result["engine"] = "process"
         if result["status"] == "ok":
             try:
                 result["summary"] = summarize_run_csv(log, diverged=code == SIMULATE_DIVERGED)
@@ -152,6 +231,8 @@ def sweep_specs(args, lk_simulate):
         raise UsageError("--grid", f"key {', '.join(repeated)} is swept twice")
     config = os.path.abspath(args.config)
     config_digest = file_digest(config)
+    lk_bin = os.path.dirname(lk_simulate)
+    engine = sweep_engine(lk_bin)
     specs = []
     for point, draw in sweep_points(axes, laws, args.monte_carlo or 0, args.seed):
         # A key 'a+b' sets both keys to the value (e.g. the two actuator delays that make tau2).
@@ -159,8 +240,10 @@ def sweep_specs(args, lk_simulate):
         inputs = {"tool": "lk_simulate", "config": config, "sets": sets, "point": point, "draw": draw}
         tid = task_id({**inputs, "config": config_digest})
         argv = [lk_simulate, "--config", config] + [a for s in sets for a in ("--set", s)]
+        # argv: the lk_simulate command of the point (what the process engine runs; by hand, the same run).
         specs.append({"kind": "sweep", "task_id": tid, "inputs": inputs, "argv": argv, "out": args.out,
-                      "timeout": args.task_timeout, "keep_logs": args.keep_logs})
+                      "timeout": args.task_timeout, "keep_logs": args.keep_logs, "engine": engine,
+                      "python_path": module_path(lk_bin)})
     return specs, axes, laws
 
 

@@ -1,6 +1,7 @@
 """lk_fleet (scripts/lk_fleet.py, the package scripts/lk_fleet/) on Dask, end to end with the real tools: a
 LocalCluster over short logs and a bad one; a dask-scheduler with two dask-workers, one SIGKILLed while it holds
-a task; a run killed midway and resumed; a 2 x 2 stability sweep; bad arguments. Run from the repository root:
+a task; a run killed midway and resumed; a 2 x 2 stability sweep, in-process and with one lk_simulate per point;
+bad arguments. Run from the repository root:
     /usr/bin/python3 -m pytest -q test/tools/test_lk_fleet_cluster.py
 LK_BIN_DIR names the folder of lk_simulate and lk_gap (default: build/ws/devel/lib/lane_keeping)."""
 import csv
@@ -43,9 +44,9 @@ def simulate(path, *sets):
     subprocess.run(argv, check=True)
 
 
-def fleet(*args, timeout=240):
+def fleet(*args, timeout=240, env=None):
     return subprocess.run(FLEET + list(args), stdout=subprocess.PIPE, stderr=subprocess.PIPE, text=True,
-                          timeout=timeout)
+                          timeout=timeout, env=None if env is None else dict(os.environ, **env))
 
 
 def read_csv(path):
@@ -281,8 +282,26 @@ def test_a_two_by_two_sweep(tmp_path):
             assert float(r["late_rms_e_y"]) == pytest.approx(math.exp(-rate * 1.55), rel=0.15)
     with open(os.path.join(out, "sweep.png"), "rb") as f:
         assert f.read(8) == b"\x89PNG\r\n\x1a\n"
+    # The points ran in the workers' own processes (the Python module lane_keeping), with no log written.
+    engines = set()
+    for path in result_files(out):
+        with open(path) as f:
+            engines.add(json.load(f)["engine"])
+    assert engines == {"in-process"} and not os.path.exists(os.path.join(out, "runs"))
     again = fleet(*args)
     assert again.returncode == 0 and "4 tasks: 0 to simulate, 4 done before (skipped)" in again.stderr
+    # One lk_simulate per point (the engine where the module is not built) gives every figure to the last digit.
+    processes = str(tmp_path / "processes")
+    run = fleet(*[processes if a == out else a for a in args], "--keep-logs", env={"LK_FLEET_SWEEP_ENGINE": "process"})
+    assert run.returncode == 0, run.stderr
+    figures = ("status", "exit_code", "rows", "t_end", "diverged", "bounded", "max_abs_e_y", "rms_e_y", "late_rms_e_y",
+               "max_abs_delta", "max_abs_torque")
+    by_task = {r["task_id"]: [r[k] for k in figures] for r in rows}
+    assert {r["task_id"]: [r[k] for k in figures] for r in read_csv(os.path.join(processes, "sweep.csv"))} == by_task
+    for path in result_files(processes):
+        with open(path) as f:
+            assert json.load(f)["engine"] == "process"
+    assert len(glob.glob(os.path.join(processes, "runs", "*.csv"))) == 4
 
 
 @pytest.mark.parametrize("args, argument, words", [

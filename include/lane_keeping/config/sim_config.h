@@ -43,6 +43,9 @@ struct SimConfig {
 /// Paper defaults, then each file in order, then each "key=value". Unknown keys, type errors and
 /// invalid values all fail with a ConfigError that names the key and the file:line.
 SimConfig loadSimConfig(const std::vector<std::string>& files, const std::vector<std::string>& assignments = {});
+/// The same from overlays already gathered (files, YAML texts, a Python dict: src/python): a `log:`
+/// section is left to the log reader, then simConfigFromFlat.
+SimConfig loadSimConfig(FlatParams source);
 /// Whether a key the source lacks keeps its compiled-in default (files: an overlay names only what it
 /// changes) or is an error (a ROS parameter tree, which the launch files load complete from
 /// config/default.yaml: a key missing there means the server does not hold what the user thinks).

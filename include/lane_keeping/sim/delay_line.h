@@ -52,10 +52,7 @@ class DelayLine {
   /// Appends a sample. Stamps must increase strictly; a repeated or older stamp throws InputError
   /// (the ROS wrappers turn that into a warning and drop the message).
   void push(Nanoseconds stamp, const S& value) {
-    if (size_ > 0 && stamp <= back().stamp) {
-      throw InputError(name_ + ": sample stamped " + std::to_string(stamp) + " ns is not newer than the last one (" +
-                       std::to_string(back().stamp) + " ns)");
-    }
+    if (size_ > 0 && stamp <= back().stamp) throwNotNewer(stamp);
     if (size_ == ring_.size()) grow();
     ring_[(head_ + size_) & mask_] = Stamped<S>{stamp, value};
     ++size_;
@@ -66,6 +63,7 @@ class DelayLine {
   Nanoseconds delay() const { return delay_; }
   /// The delay for consumer time t [ns]: the last change at or before t, else the current delay.
   Nanoseconds delayAt(Nanoseconds t) const {
+    if (changes_.empty()) return delay_;  // the common case: no change of the delay scheduled
     for (std::size_t i = changes_.size(); i-- > 0;) {
       if (changes_[i].from <= t) return changes_[i].delay;
     }
@@ -93,21 +91,12 @@ class DelayLine {
   std::size_t size() const { return size_; }
 
   /// True when the value for consumer time t is final.
-  bool covers(Nanoseconds t) const {
-    if (size_ == 0) return false;
-    const Nanoseconds query = t - delayAt(t);
-    const Nanoseconds latest = back().stamp;
-    if (query <= latest) return true;
-    return hold_ == Hold::kZeroOrder && latest + producer_period_ > query;
-  }
+  bool covers(Nanoseconds t) const { return coversQuery(t - delayAt(t)); }
 
   /// The value for consumer time t. Throws ScheduleError if not covers(t).
   S at(Nanoseconds t) const {
-    if (!covers(t)) {
-      throw ScheduleError(name_ + ": value for t = " + std::to_string(t) + " ns needs a sample stamped " +
-                          std::to_string(t - delayAt(t)) + " ns, latest is " + std::to_string(latestStamp()) + " ns");
-    }
     const Nanoseconds query = t - delayAt(t);
+    if (!coversQuery(query)) throwNotCovered(t);
     if (query <= item(0).stamp) return item(0).value;
     // Consumers prune what they have read (discardBefore), so the samples around the query usually
     // sit at the front even when the producer runs far ahead (the tracker, by tau1). With a retained
@@ -160,6 +149,24 @@ class DelayLine {
   }
 
  private:
+  /// covers() for the input time t - tau(t).
+  bool coversQuery(Nanoseconds query) const {
+    if (size_ == 0) return false;
+    const Nanoseconds latest = back().stamp;
+    if (query <= latest) return true;
+    return hold_ == Hold::kZeroOrder && latest + producer_period_ > query;
+  }
+  // The errors are built out of line: with the message's string arithmetic inline, every read and push
+  // (several per plant step) paid a large stack frame and saved registers on the way in.
+  [[gnu::noinline, gnu::cold]] void throwNotNewer(Nanoseconds stamp) const {
+    throw InputError(name_ + ": sample stamped " + std::to_string(stamp) + " ns is not newer than the last one (" +
+                     std::to_string(back().stamp) + " ns)");
+  }
+  [[gnu::noinline, gnu::cold]] void throwNotCovered(Nanoseconds t) const {
+    throw ScheduleError(name_ + ": value for t = " + std::to_string(t) + " ns needs a sample stamped " +
+                        std::to_string(t - delayAt(t)) + " ns, latest is " + std::to_string(latestStamp()) + " ns");
+  }
+
   // Ring buffer with a power-of-two capacity: pushes and discards never allocate once it has grown
   // to the producer's lead.
   const Stamped<S>& item(std::size_t i) const { return ring_[(head_ + i) & mask_]; }

@@ -1,5 +1,6 @@
 #pragma once
 /// One row of the run log (DESIGN §5 columns first, then extras), and the CSV writer/reader.
+#include <cstddef>
 #include <iosfwd>
 #include <string>
 #include <vector>
@@ -25,8 +26,13 @@ struct LogRow {
 /// `torque_applied` is the torque acting on the wheel; x_true, y_true, psi_true the true pose (the x, y,
 /// psi columns are the localisation's report).
 const std::vector<std::string>& logColumns();
+/// The number of columns of logColumns().
+constexpr std::size_t kLogColumnCount = 26;
 /// Values of a row in logColumns() order.
 std::vector<double> logValues(const LogRow& row);
+/// The same into `values` (kLogColumnCount doubles): what the CSV writer prints and the Python module's
+/// log arrays hold (src/python), so the two cannot differ.
+void logValues(const LogRow& row, double* values);
 
 /// Writes the header and rows (full double precision, so a log can be replayed exactly).
 void writeLogCsv(std::ostream& out, const std::vector<LogRow>& rows);

@@ -52,8 +52,10 @@ class PlantSession {
   /// Steps the plant while the torque covers the next step, the run has not stopped, and the step
   /// ends no later than `until` [ns] (wall-clock pacing). At every log time and at the end it checks
   /// for divergence (DivergenceMonitor::check), after every step the cheap check (checkStep).
-  /// Returns the number of steps taken.
-  long advance(const SampleCallback& on_sample, Nanoseconds until = kNoLimit);
+  /// Returns the number of steps taken. `on_sample` is a SampleCallback (may be empty) or any callable
+  /// taking the plant (the in-process runner's, inlined: it runs after every step).
+  template <typename OnSample>
+  long advance(const OnSample& on_sample, Nanoseconds until = kNoLimit);
 
   /// Steering torque M_S stamped `stamp` (the actuator's output); throws InputError if not newer than the last.
   void pushTorque(Nanoseconds stamp, double torque) {
@@ -91,6 +93,25 @@ class PlantSession {
   };
   void stop(RunResult::Status status, const std::string& message);
   void completeRows();
+  /// The checks at plant_.time() (log row, divergence, end), once per time; false if the run stopped.
+  /// Between log times and before the end there is nothing to do (inline: every step passes here).
+  bool checkCurrent() {
+    checked_current_ = true;
+    if (plant_.time() < next_log_ && plant_.time() < end_) return true;
+    return checkLogTimeOrEnd();
+  }
+  bool checkLogTimeOrEnd();
+  /// The cheap check after a step; false (and the run stopped, its last row recorded) if it failed.
+  bool checkStepped() {
+    const auto reason = monitor_.checkStep(plant_.state());
+    if (!reason) return true;
+    stopAfterStep(*reason);
+    return false;
+  }
+  void stopAfterStep(const std::string& reason);
+  static bool callable(const SampleCallback& f) { return static_cast<bool>(f); }
+  template <typename F>
+  static bool callable(const F&) { return true; }
 
   LoopSchedule schedule_;
   Nanoseconds end_;
@@ -108,5 +129,26 @@ class PlantSession {
   bool checked_current_ = false;  // the log/divergence/end checks ran for plant_.time()
   bool stopped_ = false;
 };
+
+template <typename OnSample>
+long PlantSession::advance(const OnSample& on_sample, Nanoseconds until) {
+  if (!started_) {
+    started_ = true;
+    if (callable(on_sample)) on_sample(plant_);
+  }
+  long steps = 0;
+  while (!stopped_) {
+    if (!checked_current_ && !checkCurrent()) break;
+    if (plant_.time() + plant_.stepSize() > until || !plant_.readyToStep()) break;
+    plant_.step();
+    ++steps;
+    ++result_.plant_steps;
+    checked_current_ = false;
+    if (!checkStepped()) break;
+    if (callable(on_sample)) on_sample(plant_);
+  }
+  completeRows();
+  return steps;
+}
 
 }  // namespace lane_keeping

@@ -16,25 +16,25 @@ class Rk4 {
   explicit Rk4(int size) : k1_(size), k2_(size), k3_(size), k4_(size), probe_(size) {}
 
   /// Advances x by h. f(stage, const VectorXd& x, VectorXd& x_dot). If `k1` is given it is used as
-  /// f(0, x) (the caller evaluated it already, e.g. for outputs).
+  /// f(0, x) (the caller evaluated it already, e.g. for outputs); it must not be x.
   template <class Derivative>
   void step(Derivative&& f, double h, Eigen::VectorXd& x, const Eigen::VectorXd* k1 = nullptr) {
     if (k1_.size() != x.size()) resize(static_cast<int>(x.size()));
     const Eigen::Index n = x.size();
+    const double* __restrict a = k1_.data();
     if (k1 != nullptr) {
-      k1_ = *k1;
+      a = k1->data();  // read where it is (a copy cost a pass over the state per step)
     } else {
       f(0, x, k1_);
     }
     const double half = 0.5 * h;
-    axpy(n, x.data(), half, k1_.data(), probe_.data());
+    axpy(n, x.data(), half, a, probe_.data());
     f(1, probe_, k2_);
     axpy(n, x.data(), half, k2_.data(), probe_.data());
     f(2, probe_, k3_);
     axpy(n, x.data(), h, k3_.data(), probe_.data());
     f(3, probe_, k4_);
     const double sixth = h / 6.0;
-    const double* __restrict a = k1_.data();
     const double* __restrict b = k2_.data();
     const double* __restrict c = k3_.data();
     const double* __restrict d = k4_.data();

@@ -34,18 +34,20 @@ class Tire {
   /// real time, issue #2 benchmark).
   template <typename T>
   [[gnu::always_inline]] TireForces<T> evaluate(const ContactKinematics<T>& kinematics, const T* state, T* state_dot) const {
-    const TireForces<T> forces = evaluateModel(kinematics, state, state_dot);
-    if (relaxation_length_ <= 0.0) return forces;
-    using std::abs;
-    const T rate = abs(kinematics.wheel_speed) * inv_relaxation_length_;
-    const T& lagged_force = state[model_states_];
-    const T& lagged_moment = state[model_states_ + 1];
-    state_dot[model_states_] = rate * (forces.lateral_force - lagged_force);
-    state_dot[model_states_ + 1] = rate * (forces.aligning_moment - lagged_moment);
-    TireForces<T> out = forces;
-    out.lateral_force = lagged_force;
-    out.aligning_moment = lagged_moment;
-    return out;
+    // One object, returned as it is (no copy of the model's result): a copy made GCC store the fields
+    // one by one and load them back 16 bytes at a time, a store-forwarding stall per tire and derivative.
+    TireForces<T> forces = evaluateModel(kinematics, state, state_dot);
+    if (relaxation_length_ > 0.0) {
+      using std::abs;
+      const T rate = abs(kinematics.wheel_speed) * inv_relaxation_length_;
+      const T& lagged_force = state[model_states_];
+      const T& lagged_moment = state[model_states_ + 1];
+      state_dot[model_states_] = rate * (forces.lateral_force - lagged_force);
+      state_dot[model_states_ + 1] = rate * (forces.aligning_moment - lagged_moment);
+      forces.lateral_force = lagged_force;
+      forces.aligning_moment = lagged_moment;
+    }
+    return forces;
   }
 
   /// The model's own forces and state derivative. A chain of get_if rather than std::visit: visit

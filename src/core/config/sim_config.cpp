@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdio>
 #include <sstream>
+#include <utility>
 
 #include "lane_keeping/config/param_readers.h"
 
@@ -163,6 +164,10 @@ SimConfig loadSimConfig(const std::vector<std::string>& files, const std::vector
   FlatParams source;
   for (const auto& file : files) source.overlayFile(file);
   for (const auto& assignment : assignments) source.overlayAssignment(assignment);
+  return loadSimConfig(std::move(source));
+}
+
+SimConfig loadSimConfig(FlatParams source) {
   // A `log:` section says how a log's columns map to the gap diagnosis's schema (gap/log/log_mapping.h): it
   // belongs to the files a vehicle's logs are read with, not to the simulation, which ignores it.
   source.erasePrefix("log.");

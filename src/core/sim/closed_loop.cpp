@@ -40,7 +40,7 @@ RunResult runLoop(const ChangeSchedule& changes, Nanoseconds end, const std::fun
   plant.scheduleChanges(changes, 1);
   scheduleChanges(tracker, changes, 1);
   scheduleChanges(actuator, changes, 1);
-  const PlantSession::SampleCallback feed = [&](const VehiclePlant& p) {
+  const auto feed = [&](const VehiclePlant& p) {  // a lambda, not a SampleCallback: inlined into advance()
     tracker.pushPose(p.time(), p.pose());
     actuator.pushMeasurement(p.time(), p.measurement());
   };

@@ -7,16 +7,14 @@
 
 namespace lane_keeping {
 
-std::optional<std::string> DivergenceMonitor::checkStep(const Eigen::VectorXd& state) const {
-  if (!state.allFinite()) return std::string("the state became non-finite (NaN/Inf)");
+std::string DivergenceMonitor::describeStep(const Eigen::VectorXd& state) const {
+  static_assert(kDelta == 3, "checkStep reads the steering angle at index 3");
+  if (!state.allFinite()) return "the state became non-finite (NaN/Inf)";
   const double delta = state[kDelta];
-  if (std::fabs(delta) > limits_.max_steering_angle) {
-    std::ostringstream out;
-    out << "|steering angle| = " << std::fabs(delta) << " rad exceeds simulation.divergence.max_steering_angle = "
-        << limits_.max_steering_angle << " rad (steering oscillation out of bounds)";
-    return out.str();
-  }
-  return std::nullopt;
+  std::ostringstream out;
+  out << "|steering angle| = " << std::fabs(delta) << " rad exceeds simulation.divergence.max_steering_angle = "
+      << limits_.max_steering_angle << " rad (steering oscillation out of bounds)";
+  return out.str();
 }
 
 std::optional<std::string> DivergenceMonitor::check(const VehicleStateSample& s, const PathErrors& e) const {

@@ -32,72 +32,55 @@ void PlantSession::stop(RunResult::Status status, const std::string& message) {
   result_.end_time = nanosecondsToSeconds(plant_.time());
 }
 
-long PlantSession::advance(const SampleCallback& on_sample, Nanoseconds until) {
-  if (!started_) {
-    started_ = true;
-    if (on_sample) on_sample(plant_);
-  }
-  long steps = 0;
-  while (!stopped_) {
-    const Nanoseconds t = plant_.time();
-    if (!checked_current_) {
-      checked_current_ = true;
-      const bool log_due = t >= next_log_;
-      const bool at_end = t >= end_;
-      if (log_due || at_end) {
-        // The errors from the lane and the divergence monitor see the true motion; the log records what
-        // the sensors report (sensor_model.h), with the true pose in its *_true columns.
-        const VehicleStateSample truth = plant_.truth();
-        const PathErrors errors = path_->errors(truth.x, truth.y, truth.psi, truth.x_dot, truth.y_dot, truth.sigma2);
-        if (log_due) {
-          if (record_rows_) {
-            PendingRow pending;
-            pending.stamp = t;
-            pending.row.t = nanosecondsToSeconds(t);
-            pending.row.state = plant_.sample();
-            pending.row.x_true = truth.x;
-            pending.row.y_true = truth.y;
-            pending.row.psi_true = truth.psi;
-            pending.row.e_y = errors.lateral;
-            pending.row.e_psi = errors.heading;
-            pending_.push_back(pending);
-          }
-          while (next_log_ <= t) next_log_ += schedule_.log_period;
-        }
-        if (auto reason = monitor_.check(truth, errors)) {
-          stop(RunResult::Status::kDiverged, "diverged at t = " + formatSeconds(nanosecondsToSeconds(t)) + ": " + *reason);
-          break;
-        }
+bool PlantSession::checkLogTimeOrEnd() {
+  const Nanoseconds t = plant_.time();
+  const bool log_due = t >= next_log_;
+  const bool at_end = t >= end_;
+  if (log_due || at_end) {
+    // The errors from the lane and the divergence monitor see the true motion; the log records what
+    // the sensors report (sensor_model.h), with the true pose in its *_true columns.
+    const VehicleStateSample truth = plant_.truth();
+    const PathErrors errors = path_->errors(truth.x, truth.y, truth.psi, truth.x_dot, truth.y_dot, truth.sigma2);
+    if (log_due) {
+      if (record_rows_) {
+        PendingRow pending;
+        pending.stamp = t;
+        pending.row.t = nanosecondsToSeconds(t);
+        pending.row.state = plant_.sample();
+        pending.row.x_true = truth.x;
+        pending.row.y_true = truth.y;
+        pending.row.psi_true = truth.psi;
+        pending.row.e_y = errors.lateral;
+        pending.row.e_psi = errors.heading;
+        pending_.push_back(pending);
       }
-      if (at_end) {
-        stop(RunResult::Status::kCompleted, "");
-        break;
-      }
+      while (next_log_ <= t) next_log_ += schedule_.log_period;
     }
-    if (plant_.time() + plant_.stepSize() > until || !plant_.readyToStep()) break;
-    plant_.step();
-    ++steps;
-    ++result_.plant_steps;
-    checked_current_ = false;
-    if (auto reason = monitor_.checkStep(plant_.state())) {
-      // Record the offending state so the log shows how it ended, then stop.
-      PendingRow pending;
-      pending.stamp = plant_.time();
-      pending.row.t = nanosecondsToSeconds(plant_.time());
-      pending.row.state = plant_.sample();
-      const VehicleStateSample truth = plant_.truth();
-      pending.row.x_true = truth.x;
-      pending.row.y_true = truth.y;
-      pending.row.psi_true = truth.psi;
-      pending.needs_inputs = false;
-      if (record_rows_) pending_.push_back(pending);
-      stop(RunResult::Status::kDiverged, "diverged at t = " + formatSeconds(pending.row.t) + ": " + *reason);
-      break;
+    if (auto reason = monitor_.check(truth, errors)) {
+      stop(RunResult::Status::kDiverged, "diverged at t = " + formatSeconds(nanosecondsToSeconds(t)) + ": " + *reason);
+      return false;
     }
-    if (on_sample) on_sample(plant_);
   }
-  completeRows();
-  return steps;
+  if (at_end) {
+    stop(RunResult::Status::kCompleted, "");
+    return false;
+  }
+  return true;
+}
+
+void PlantSession::stopAfterStep(const std::string& reason) {
+  // Record the offending state so the log shows how it ended, then stop.
+  PendingRow pending;
+  pending.stamp = plant_.time();
+  pending.row.t = nanosecondsToSeconds(plant_.time());
+  pending.row.state = plant_.sample();
+  const VehicleStateSample truth = plant_.truth();
+  pending.row.x_true = truth.x;
+  pending.row.y_true = truth.y;
+  pending.row.psi_true = truth.psi;
+  pending.needs_inputs = false;
+  if (record_rows_) pending_.push_back(pending);
+  stop(RunResult::Status::kDiverged, "diverged at t = " + formatSeconds(pending.row.t) + ": " + reason);
 }
 
 void PlantSession::completeRows() {

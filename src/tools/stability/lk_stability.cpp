@@ -20,9 +20,11 @@
 
 #include "lane_keeping/analysis/closed_loop_linearization.h"
 #include "lane_keeping/analysis/config_parameter.h"
+#include "lane_keeping/analysis/critical_delay.h"
 #include "lane_keeping/analysis/dde_spectrum.h"
 #include "lane_keeping/analysis/equation_readings.h"
 #include "lane_keeping/analysis/stability_boundary.h"
+#include "lane_keeping/analysis/stability_json.h"
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/sim_config.h"
 #include "stability_charts.h"
@@ -39,35 +41,14 @@ double scanSpectra(int steps) { return steps + 61.0; }
 
 int commandCritical(const Args& a, const SimConfig& c) {
   const auto start = std::chrono::steady_clock::now();
-  const SpectrumOptions so = spectrumOptions(a, 24, 10);
-  checkBudget(a, systemOf(a, c), so.degree, scanSpectra(a.steps), 1, 0, "--degree and --steps");
-  const ClosedLoopLinearization lin = linearizeClosedLoop(c);
-  const Spectrum here = computeSpectrum(systemOf(a, c), so);
-  ScanOptions scan;
-  scan.start = 1e-5;
-  scan.end = a.tau2_max;
-  scan.steps = a.steps;
-  scan.spectrum = so;
-  if (!(scan.end > scan.start)) badArguments("--tau2-max must exceed 1e-5 s");
-  const Crossing cross = findFirstCrossing(familyOf(a, c, "tau2"), scan);
-  json j;
-  j["tau2_critical_s"] = cross.found ? json(cross.parameter) : json(nullptr);
-  j["frequency_hz"] = cross.found ? json(cross.frequencyHz()) : json(nullptr);
-  j["omega_rad_s"] = cross.found ? json(cross.angularFrequency()) : json(nullptr);
-  j["found"] = cross.found;
-  if (!cross.found) j["reason"] = "tau2 scan [s]: " + cross.reason;
-  if (cross.found) j["crossing_root"] = rootJson(cross.root);
-  const bool equal_tau2 = c.delays.desired_steering_to_actuator == c.delays.steering_angle_to_actuator;
-  j["tau2_configured_s"] = equal_tau2 ? json(c.delays.steering_angle_to_actuator) : json(nullptr);
-  if (!equal_tau2) j["note"] = "the configured actuator delays differ; tau2_critical_s sets both to one value";
-  if (cross.found && equal_tau2) j["tau2_margin"] = cross.parameter / c.delays.steering_angle_to_actuator;
-  j["stable_at_configured"] = here.abscissa() < 0.0;
-  j["spectral_abscissa_at_configured"] = here.abscissa();
-  j["rightmost_roots"] = spectrumJson(here, a.count);
-  j["point"] = pointJson(c);
-  j["equations"] = a.reading.empty() ? "printed" : a.reading;
-  j["dde"] = ddeJson(lin, &here, so.degree);
-  j["scan"] = {{"tau2_from_s", scan.start}, {"tau2_to_s", scan.end}, {"steps", scan.steps}, {"spectra", cross.spectra}};
+  CriticalDelayOptions options;
+  options.tau2_to = a.tau2_max;
+  options.steps = a.steps;
+  options.spectrum = spectrumOptions(a, 24, 10);
+  options.reading = a.reading;
+  checkBudget(a, systemOf(a, c), options.spectrum.degree, scanSpectra(a.steps), 1, 0, "--degree and --steps");
+  if (!(options.tau2_to > options.tau2_from)) badArguments("--tau2-max must exceed 1e-5 s");
+  json j = criticalDelayJson(c, criticalDelay(c, options), options, a.count);
   j["wall_s"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   printJson(j);
   return 0;
@@ -76,22 +57,14 @@ int commandCritical(const Args& a, const SimConfig& c) {
 int commandRoots(const Args& a, const SimConfig& c) {
   const SpectrumOptions so = spectrumOptions(a, 24, 10);
   checkBudget(a, systemOf(a, c), so.degree, 1, 1, 0, "--degree");
-  const ClosedLoopLinearization lin = linearizeClosedLoop(c);
-  const Spectrum s = computeSpectrum(systemOf(a, c), so);
-  printJson(json{{"equations", a.reading.empty() ? "printed" : a.reading},
-                 {"stable", s.abscissa() < 0.0},
-                 {"spectral_abscissa", s.abscissa()},
-                 {"unstable_roots", s.unstableCount()},
-                 {"rightmost_roots", spectrumJson(s, a.count)},
-                 {"point", pointJson(c)},
-                 {"dde", ddeJson(lin, &s, so.degree)}});
+  printJson(rootsJson(c, computeSpectrum(systemOf(a, c), so), a.reading, a.count, so.degree));
   return 0;
 }
 
 int commandBoundary(const Args& a, const SimConfig& c) {
   if (a.param.empty() || std::isnan(a.from) || std::isnan(a.to)) badArguments("boundary needs --param KEY --from A --to B");
   if (a.from == a.to) badArguments("--from and --to are both " + std::to_string(a.from) + ": the scan needs two ends");
-  const ConfigParameterInfo info = configParameterInfo(a.param);
+  configParameterInfo(a.param);
   ScanOptions scan;
   scan.start = a.from;
   scan.end = a.to;
@@ -100,15 +73,7 @@ int commandBoundary(const Args& a, const SimConfig& c) {
   scan.spectrum = spectrumOptions(a, 24, 10);
   if (scan.geometric && !(a.from > 0 && a.to > 0)) badArguments("a geometric scan needs --from, --to > 0 (or --uniform)");
   checkBudget(a, systemOf(a, c), scan.spectrum.degree, scanSpectra(a.steps), 1, 0, "--degree and --steps");
-  const Crossing cross = findFirstCrossing(familyOf(a, c, a.param), scan);
-  json j{{"param", a.param}, {"unit", info.unit}, {"equations", a.reading.empty() ? "printed" : a.reading},
-         {"found", cross.found},
-         {"critical", cross.found ? json(cross.parameter) : json(nullptr)},
-         {"frequency_hz", cross.found ? json(cross.frequencyHz()) : json(nullptr)},
-         {"spectral_abscissa_at_from", cross.abscissa_start}, {"point", pointJson(c)}};
-  if (cross.found) j["crossing_root"] = rootJson(cross.root);
-  if (!cross.found) j["reason"] = cross.reason;
-  printJson(j);
+  printJson(boundaryJson(c, a.param, findFirstCrossing(familyOf(a, c, a.param), scan), a.reading));
   return 0;
 }
 

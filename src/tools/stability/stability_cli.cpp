@@ -6,6 +6,7 @@
 #include <iostream>
 #include <sstream>
 
+#include "lane_keeping/analysis/critical_delay.h"
 #include "lane_keeping/analysis/config_parameter.h"
 #include "lane_keeping/analysis/equation_readings.h"
 #include "lane_keeping/analysis/stability_budget.h"
@@ -150,44 +151,6 @@ Args parseArgs(int argc, char** argv) {
   return a;
 }
 
-json rootJson(Complex r, bool refined) {
-  return json{{"re", r.real()}, {"im", r.imag()}, {"frequency_hz", std::fabs(r.imag()) / (2 * M_PI)}, {"refined", refined}};
-}
-
-json spectrumJson(const Spectrum& s, int count) {
-  json roots = json::array();
-  for (std::size_t i = 0; i < s.roots.size() && static_cast<int>(i) < count; ++i) {
-    roots.push_back(rootJson(s.roots[i].value, s.roots[i].refined));
-  }
-  return roots;
-}
-
-json ddeJson(const ClosedLoopLinearization& lin, const Spectrum* spectrum, int degree) {
-  json delays = json::array();
-  for (const auto& t : lin.dde.delayed) delays.push_back(t.delay);
-  json d{{"states", lin.dde.state_names}, {"dropped_states", lin.dropped_states}, {"delays_s", delays},
-         {"k_p", lin.k_p}, {"k_d", lin.k_d}, {"k_i", lin.k_i}};
-  if (spectrum) {
-    d["discretisation"] = {{"method", "Chebyshev collocation of each delay line (infinitesimal generator) + Newton on det Delta"},
-                           {"degree_per_delay_line", degree},
-                           {"delay_line_ranks", spectrum->ranks},
-                           {"matrix_order", spectrum->dimension}};
-  }
-  return d;
-}
-
-json pointJson(const SimConfig& c) {
-  return json{{"k_psi", c.tracker.k_psi},
-              {"k_y", c.tracker.k_y},
-              {"p", c.actuator.p},
-              {"tau1_s", c.delays.pose_to_tracker},
-              {"tau_desired_s", c.delays.desired_steering_to_actuator},
-              {"tau_measured_s", c.delays.steering_angle_to_actuator},
-              {"tau_torque_s", c.delays.torque_to_plant},
-              {"tire_front", c.tire_front.model},
-              {"tire_rear", c.tire_rear.model}};
-}
-
 SpectrumOptions spectrumOptions(const Args& a, int default_degree, int seeds) {
   SpectrumOptions o;
   o.degree = a.degree > 0 ? a.degree : default_degree;
@@ -197,22 +160,9 @@ SpectrumOptions spectrumOptions(const Args& a, int default_degree, int seeds) {
 
 void printJson(const json& j) { std::cout << j.dump(2) << "\n"; }
 
-LinearDelaySystem systemOf(const Args& a, const SimConfig& c) {
-  if (a.reading.empty()) return linearizeClosedLoop(c).dde;
-  return linearizeUnderReading(c, readingByName(a.reading));
-}
+LinearDelaySystem systemOf(const Args& a, const SimConfig& c) { return loopDelaySystem(c, a.reading); }
 
-SystemFamily familyOf(const Args& a, const SimConfig& c, const std::string& key) {
-  if (a.reading.empty()) return configFamily(c, key);
-  configParameterInfo(key);
-  const EquationReading reading = readingByName(a.reading);
-  if (key == "tau2") return readingFamily(c, reading);
-  return [c, key, reading](double v) {
-    SimConfig at = c;
-    setConfigNumber(at, key, v);
-    return linearizeUnderReading(at, reading);
-  };
-}
+SystemFamily familyOf(const Args& a, const SimConfig& c, const std::string& key) { return loopFamily(c, key, a.reading); }
 
 }  // namespace stability_cli
 }  // namespace lane_keeping

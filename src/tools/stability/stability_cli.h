@@ -1,21 +1,21 @@
 #pragma once
-// Command-line plumbing shared by lk_stability's sub-commands: arguments, JSON renderings, and the
-// loop's delay system under the printed equations or an alternative reading (--reading).
+// Command-line plumbing shared by lk_stability's sub-commands: arguments, printing JSON (the renderings
+// are the core's: stability_json.h), and the loop's delay system under the printed equations or an
+// alternative reading (--reading; critical_delay.h).
 #include <iosfwd>
 #include <string>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "lane_keeping/analysis/closed_loop_linearization.h"
 #include "lane_keeping/analysis/dde_spectrum.h"
 #include "lane_keeping/analysis/stability_boundary.h"
+#include "lane_keeping/analysis/stability_json.h"
 #include "lane_keeping/config/sim_config.h"
 
 namespace lane_keeping {
 namespace stability_cli {
 
-using json = nlohmann::ordered_json;
+using json = StabilityJson;  // rootJson, pointJson, ...: lane_keeping/analysis/stability_json.h
 
 struct Args {
   std::string command;
@@ -35,10 +35,6 @@ double parseNumber(const std::string& text, const std::string& what);
 int parseInt(const std::string& text, const std::string& what, int min, int max);
 Args parseArgs(int argc, char** argv);
 
-json rootJson(Complex r, bool refined = true);
-json spectrumJson(const Spectrum& s, int count);
-json ddeJson(const ClosedLoopLinearization& lin, const Spectrum* spectrum, int degree);
-json pointJson(const SimConfig& c);
 SpectrumOptions spectrumOptions(const Args& a, int default_degree, int seeds);
 void printJson(const json& j);
 

@@ -67,6 +67,19 @@ struct GapLog {
 /// base (column_shift.h); the notes say so.
 GapLog readCsvLog(const std::string& path, const LogMapping& mapping = {});
 
+/// A log's columns in memory (a pandas DataFrame handed over by the Python module): names as a CSV
+/// header would give them, and each column's values (NaN for a missing value).
+struct LogTable {
+  std::string source;                       ///< names the table in messages, e.g. "DataFrame logs[0]"
+  std::vector<std::string> columns;         ///< column names
+  std::vector<std::vector<double>> values;  ///< values[c][row], one vector per column, equal lengths
+};
+
+/// The log of a table, by readCsvLog's rules after parsing (the mapping, the required t, NaN/Inf rows
+/// skipped and counted, strictly increasing time, values no car produces refused): a table holding a
+/// CSV file's numbers gives the log that file gives. Errors name the table and the row (from 0).
+GapLog gapLogFromTable(const LogTable& table, const LogMapping& mapping = {});
+
 /// Writes a GapLog as CSV (the same columns), full precision.
 void writeCsvLog(const std::string& path, const GapLog& log);
 

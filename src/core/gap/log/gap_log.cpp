@@ -123,6 +123,169 @@ struct RawRow {
   std::vector<double> values;  // indexed like `present`
 };
 
+/// How messages name a row: "file.csv:12" (a CSV file's line) or "DataFrame 'run' row 10" (a table's
+/// row position, from 0).
+struct RowNaming {
+  std::string source;
+  bool csv = true;
+  std::string word() const { return csv ? "line" : "row"; }
+  std::string at(std::size_t line) const { return csv ? source + ":" + std::to_string(line) : source + " row " + std::to_string(line); }
+};
+
+/// The log from its parsed rows (values of the `present` specs, in their order; t first): units
+/// (the mapping's scale and offset), optional columns without a finite value dropped, time strictly
+/// increasing, values no car produces refused, rows with a non-finite used value skipped and counted.
+/// readCsvLog and gapLogFromTable share it, so a file and the same table in memory give the same log.
+GapLog finishLog(const RowNaming& naming, const std::vector<ColumnSpec>& specs, const std::vector<std::size_t>& present,
+                 std::vector<RawRow> rows, const LogMapping& mapping) {
+  GapLog log;
+  log.source = naming.source;
+  log.rows_read = rows.size();
+  log.mapping = mapping.source;
+  // Units: value = scale * raw + offset for mapped columns, seconds for the time column.
+  for (std::size_t p = 0; p < present.size(); ++p) {
+    const std::string& name = specs[present[p]].name;
+    double scale = 1.0, offset = 0.0;
+    if (name == std::string("t")) {
+      scale = mapping.time_scale;
+    } else if (const auto it = mapping.columns.find(name); it != mapping.columns.end()) {
+      scale = it->second.scale;
+      offset = it->second.offset;
+      if (it->second.unscaled) log.unscaled.insert(name);
+    }
+    if (scale == 1.0 && offset == 0.0) continue;
+    for (RawRow& r : rows) r.values[p] = scale * r.values[p] + offset;
+  }
+
+  // An optional column that holds no finite value at all is treated as absent (with a note);
+  // otherwise it is used, and a row with a non-finite cell in it is skipped.
+  std::vector<bool> use(present.size(), true);
+  for (std::size_t p = 0; p < present.size(); ++p) {
+    if (specs[present[p]].required || rows.empty()) continue;
+    const bool any_finite = std::any_of(rows.begin(), rows.end(), [&](const RawRow& r) { return std::isfinite(r.values[p]); });
+    if (!any_finite) {
+      use[p] = false;
+      log.notes.push_back(naming.source + ": optional column '" + specs[present[p]].name +
+                          "' has no finite value; treated as absent");
+    }
+  }
+
+  // Time must increase strictly over the rows that carry a finite t (t is column 0 of `present`).
+  const std::size_t t_index = 0;
+  double last_t = std::numeric_limits<double>::quiet_NaN();
+  std::size_t last_line = 0;
+  bool have_last = false;  // a table's rows count from 0
+  for (const RawRow& r : rows) {
+    const double t = r.values[t_index];
+    if (!std::isfinite(t)) continue;
+    if (have_last && !(t > last_t)) {
+      throw InputError(naming.at(r.line) + ": column 't': time not strictly increasing: t = " + formatDouble(t) +
+                       " follows t = " + formatDouble(last_t) + " (" + naming.word() + " " + std::to_string(last_line) +
+                       ")");
+    }
+    last_t = t;
+    last_line = r.line;
+    have_last = true;
+  }
+
+  // Values no car produces: a wrong unit or scale (a steering-wheel angle in degrees, torque in counts
+  // read as N m) or a corrupt file. Fatal, naming the line: the diagnosis would fit them.
+  for (std::size_t p = 0; p < present.size(); ++p) {
+    if (!use[p]) continue;
+    const ColumnSpec& spec = specs[present[p]];
+    const bool unscaled = log.unscaled.count(spec.name) > 0;
+    const double limit = unscaled ? kUnscaledLimit : spec.limit;
+    for (const RawRow& r : rows) {
+      const double v = r.values[p];
+      if (std::isfinite(v) && std::fabs(v) > limit) {
+        throw InputError(naming.at(r.line) + ": column '" + spec.name + "' holds " + formatDouble(v) +
+                         ", beyond what a car produces (|" + spec.name + "| <= " + formatDouble(limit) + " " +
+                         (unscaled ? "in any unit" : spec.unit) +
+                         "); check the column's unit, or its scale in the log mapping");
+      }
+    }
+  }
+
+  // Keep the rows whose used cells are all finite.
+  std::vector<std::size_t> skipped_lines;
+  std::vector<std::size_t> bad_per_column(present.size(), 0);
+  for (std::size_t p = 0; p < present.size(); ++p)
+    if (use[p]) (log.*specs[present[p]].member).reserve(rows.size());
+  for (const RawRow& r : rows) {
+    bool ok = true;
+    for (std::size_t p = 0; p < present.size(); ++p) {
+      if (use[p] && !std::isfinite(r.values[p])) {
+        ok = false;
+        ++bad_per_column[p];
+      }
+    }
+    if (!ok) {
+      skipped_lines.push_back(r.line);
+      continue;
+    }
+    for (std::size_t p = 0; p < present.size(); ++p)
+      if (use[p]) (log.*specs[present[p]].member).push_back(r.values[p]);
+  }
+  log.rows_skipped = skipped_lines.size();
+  if (!skipped_lines.empty()) {
+    std::string by_column;
+    for (std::size_t p = 0; p < present.size(); ++p) {
+      if (bad_per_column[p] == 0) continue;
+      by_column += std::string(by_column.empty() ? "" : ", ") + specs[present[p]].name + " " +
+                   std::to_string(bad_per_column[p]);
+    }
+    log.notes.push_back(naming.source + ": skipped " + std::to_string(skipped_lines.size()) + " of " +
+                        std::to_string(rows.size()) + " rows with NaN/Inf/empty cells (" +
+                        lineList(skipped_lines, naming.csv ? "lines" : "rows") + "; cells by column: " + by_column +
+                        ")");
+  }
+  // A heading that wraps at +-pi, unwrapped (before any shift interpolates across a wrap); columns logged
+  // late, moved back onto the time base (the mapping's `shift:`).
+  unwrapHeading(&log);
+  applyColumnShifts(&log, mapping);
+  if (log.size() < kMinValidRows) {
+    throw InputError(naming.source + ": only " + std::to_string(log.size()) + " valid data rows (" +
+                     std::to_string(rows.size()) + " read, " + std::to_string(log.rows_skipped) +
+                     " skipped for NaN/Inf/empty cells); at least " + std::to_string(kMinValidRows) + " are needed");
+  }
+  return log;
+}
+
+/// The header position of each spec (through the log mapping, if any), -1 if absent. Throws InputError
+/// at `where` (the header's place) for a column found twice, a mapped column missing from the
+/// `container` ("file", "table") or a required column missing.
+std::vector<int> columnPositions(const std::vector<std::string>& header, const LogMapping& mapping, const std::string& where,
+                                 const std::string& container) {
+  const std::vector<ColumnSpec>& specs = columnSpecs();
+  std::vector<int> position(specs.size(), -1);  // header index of each spec, -1 if absent
+  std::vector<std::string> missing;
+  for (std::size_t s = 0; s < specs.size(); ++s) {
+    const std::string column = mapping.columnFor(specs[s].name);
+    const bool mapped = column != specs[s].name;
+    for (std::size_t h = 0; h < header.size(); ++h) {
+      if (header[h] != column) continue;
+      if (position[s] >= 0) {
+        throw InputError(where + ": column '" + column +
+                         "' appears twice (columns " + std::to_string(position[s] + 1) + " and " +
+                         std::to_string(h + 1) + ")");
+      }
+      position[s] = static_cast<int>(h);
+    }
+    if (position[s] < 0 && mapped) {
+      const auto it = mapping.columns.find(specs[s].name);
+      throw InputError(where + ": column '" + column + "' (mapped to " +
+                       specs[s].name + " by " + (it == mapping.columns.end() ? mapping.source : it->second.location) +
+                       ") is not in the " + container + "; columns found: " + joinNames(header));
+    }
+    if (position[s] < 0 && specs[s].required) missing.push_back(specs[s].name);
+  }
+  if (!missing.empty()) {
+    throw InputError(where + ": missing required column" +
+                     (missing.size() > 1 ? "s " : " ") + joinNames(missing) + "; columns found: " + joinNames(header));
+  }
+  return position;
+}
+
 }  // namespace
 
 bool GapLog::has(const std::string& name, bool scaled) const {
@@ -205,33 +368,7 @@ GapLog readCsvLog(const std::string& path, const LogMapping& mapping) {
     throw InputError(path + ": empty file (no header row; expected columns " + joinNames(names) + ")");
   }
 
-  // Map the used columns to header positions (through the log mapping, if any).
-  std::vector<int> position(specs.size(), -1);  // header index of each spec, -1 if absent
-  std::vector<std::string> missing;
-  for (std::size_t s = 0; s < specs.size(); ++s) {
-    const std::string column = mapping.columnFor(specs[s].name);
-    const bool mapped = column != specs[s].name;
-    for (std::size_t h = 0; h < header.size(); ++h) {
-      if (header[h] != column) continue;
-      if (position[s] >= 0) {
-        throw InputError(path + ":" + std::to_string(header_line) + ": column '" + column +
-                         "' appears twice (columns " + std::to_string(position[s] + 1) + " and " +
-                         std::to_string(h + 1) + ")");
-      }
-      position[s] = static_cast<int>(h);
-    }
-    if (position[s] < 0 && mapped) {
-      const auto it = mapping.columns.find(specs[s].name);
-      throw InputError(path + ":" + std::to_string(header_line) + ": column '" + column + "' (mapped to " +
-                       specs[s].name + " by " + (it == mapping.columns.end() ? mapping.source : it->second.location) +
-                       ") is not in the file; columns found: " + joinNames(header));
-    }
-    if (position[s] < 0 && specs[s].required) missing.push_back(specs[s].name);
-  }
-  if (!missing.empty()) {
-    throw InputError(path + ":" + std::to_string(header_line) + ": missing required column" +
-                     (missing.size() > 1 ? "s " : " ") + joinNames(missing) + "; columns found: " + joinNames(header));
-  }
+  const std::vector<int> position = columnPositions(header, mapping, path + ":" + std::to_string(header_line), "file");
   std::vector<std::size_t> present;  // spec indices present in the file
   for (std::size_t s = 0; s < specs.size(); ++s)
     if (position[s] >= 0) present.push_back(s);
@@ -260,114 +397,34 @@ GapLog readCsvLog(const std::string& path, const LogMapping& mapping) {
   }
   if (in.bad()) throw InputError(path + ": read error after line " + std::to_string(line_number));
 
-  GapLog log;
-  log.source = path;
-  log.rows_read = rows.size();
-  log.mapping = mapping.source;
-  // Units: value = scale * raw + offset for mapped columns, seconds for the time column.
-  for (std::size_t p = 0; p < present.size(); ++p) {
-    const std::string& name = specs[present[p]].name;
-    double scale = 1.0, offset = 0.0;
-    if (name == std::string("t")) {
-      scale = mapping.time_scale;
-    } else if (const auto it = mapping.columns.find(name); it != mapping.columns.end()) {
-      scale = it->second.scale;
-      offset = it->second.offset;
-      if (it->second.unscaled) log.unscaled.insert(name);
-    }
-    if (scale == 1.0 && offset == 0.0) continue;
-    for (RawRow& r : rows) r.values[p] = scale * r.values[p] + offset;
-  }
+  return finishLog(RowNaming{path, true}, specs, present, std::move(rows), mapping);
+}
 
-  // An optional column that holds no finite value at all is treated as absent (with a note);
-  // otherwise it is used, and a row with a non-finite cell in it is skipped.
-  std::vector<bool> use(present.size(), true);
-  for (std::size_t p = 0; p < present.size(); ++p) {
-    if (specs[present[p]].required || rows.empty()) continue;
-    const bool any_finite = std::any_of(rows.begin(), rows.end(), [&](const RawRow& r) { return std::isfinite(r.values[p]); });
-    if (!any_finite) {
-      use[p] = false;
-      log.notes.push_back(path + ": optional column '" + specs[present[p]].name +
-                          "' has no finite value; treated as absent");
+GapLog gapLogFromTable(const LogTable& table, const LogMapping& mapping) {
+  if (table.values.size() != table.columns.size()) {
+    throw InputError(table.source + ": " + std::to_string(table.columns.size()) + " column names but " +
+                     std::to_string(table.values.size()) + " columns of values");
+  }
+  const std::size_t rows_in_table = table.columns.empty() ? 0 : table.values.front().size();
+  for (std::size_t c = 0; c < table.columns.size(); ++c) {
+    if (table.values[c].size() != rows_in_table) {
+      throw InputError(table.source + ": column '" + table.columns[c] + "' has " + std::to_string(table.values[c].size()) +
+                       " values, column '" + table.columns.front() + "' has " + std::to_string(rows_in_table));
     }
   }
-
-  // Time must increase strictly over the rows that carry a finite t (t is column 0 of `present`).
-  const std::size_t t_index = 0;
-  double last_t = std::numeric_limits<double>::quiet_NaN();
-  std::size_t last_line = 0;
-  for (const RawRow& r : rows) {
-    const double t = r.values[t_index];
-    if (!std::isfinite(t)) continue;
-    if (last_line != 0 && !(t > last_t)) {
-      throw InputError(path + ":" + std::to_string(r.line) + ": column 't': time not strictly increasing: t = " +
-                       formatDouble(t) + " follows t = " + formatDouble(last_t) + " (line " +
-                       std::to_string(last_line) + ")");
-    }
-    last_t = t;
-    last_line = r.line;
+  const std::vector<ColumnSpec>& specs = columnSpecs();
+  const std::vector<int> position = columnPositions(table.columns, mapping, table.source, "table");
+  std::vector<std::size_t> present;  // spec indices present in the table
+  for (std::size_t s = 0; s < specs.size(); ++s)
+    if (position[s] >= 0) present.push_back(s);
+  std::vector<RawRow> rows;
+  rows.reserve(rows_in_table);
+  for (std::size_t i = 0; i < rows_in_table; ++i) {
+    RawRow row{i, std::vector<double>(present.size())};
+    for (std::size_t p = 0; p < present.size(); ++p) row.values[p] = table.values[static_cast<std::size_t>(position[present[p]])][i];
+    rows.push_back(std::move(row));
   }
-
-  // Values no car produces: a wrong unit or scale (a steering-wheel angle in degrees, torque in counts
-  // read as N m) or a corrupt file. Fatal, naming the line: the diagnosis would fit them.
-  for (std::size_t p = 0; p < present.size(); ++p) {
-    if (!use[p]) continue;
-    const ColumnSpec& spec = specs[present[p]];
-    const bool unscaled = log.unscaled.count(spec.name) > 0;
-    const double limit = unscaled ? kUnscaledLimit : spec.limit;
-    for (const RawRow& r : rows) {
-      const double v = r.values[p];
-      if (std::isfinite(v) && std::fabs(v) > limit) {
-        throw InputError(path + ":" + std::to_string(r.line) + ": column '" + spec.name + "' holds " + formatDouble(v) +
-                         ", beyond what a car produces (|" + spec.name + "| <= " + formatDouble(limit) + " " +
-                         (unscaled ? "in any unit" : spec.unit) +
-                         "); check the column's unit, or its scale in the log mapping");
-      }
-    }
-  }
-
-  // Keep the rows whose used cells are all finite.
-  std::vector<std::size_t> skipped_lines;
-  std::vector<std::size_t> bad_per_column(present.size(), 0);
-  for (std::size_t p = 0; p < present.size(); ++p)
-    if (use[p]) (log.*specs[present[p]].member).reserve(rows.size());
-  for (const RawRow& r : rows) {
-    bool ok = true;
-    for (std::size_t p = 0; p < present.size(); ++p) {
-      if (use[p] && !std::isfinite(r.values[p])) {
-        ok = false;
-        ++bad_per_column[p];
-      }
-    }
-    if (!ok) {
-      skipped_lines.push_back(r.line);
-      continue;
-    }
-    for (std::size_t p = 0; p < present.size(); ++p)
-      if (use[p]) (log.*specs[present[p]].member).push_back(r.values[p]);
-  }
-  log.rows_skipped = skipped_lines.size();
-  if (!skipped_lines.empty()) {
-    std::string by_column;
-    for (std::size_t p = 0; p < present.size(); ++p) {
-      if (bad_per_column[p] == 0) continue;
-      by_column += std::string(by_column.empty() ? "" : ", ") + specs[present[p]].name + " " +
-                   std::to_string(bad_per_column[p]);
-    }
-    log.notes.push_back(path + ": skipped " + std::to_string(skipped_lines.size()) + " of " +
-                        std::to_string(rows.size()) + " rows with NaN/Inf/empty cells (" +
-                        lineList(skipped_lines, "lines") + "; cells by column: " + by_column + ")");
-  }
-  // A heading that wraps at +-pi, unwrapped (before any shift interpolates across a wrap); columns logged
-  // late, moved back onto the time base (the mapping's `shift:`).
-  unwrapHeading(&log);
-  applyColumnShifts(&log, mapping);
-  if (log.size() < kMinValidRows) {
-    throw InputError(path + ": only " + std::to_string(log.size()) + " valid data rows (" +
-                     std::to_string(rows.size()) + " read, " + std::to_string(log.rows_skipped) +
-                     " skipped for NaN/Inf/empty cells); at least " + std::to_string(kMinValidRows) + " are needed");
-  }
-  return log;
+  return finishLog(RowNaming{table.source, false}, specs, present, std::move(rows), mapping);
 }
 
 void writeCsvLog(const std::string& path, const GapLog& log) {

@@ -1,0 +1,86 @@
+"""diagnose: lk_gap in-process (docs/python_api.md)."""
+
+import json
+import os
+from collections.abc import Mapping
+
+from . import _lane_keeping
+from ._inputs import config_layers, log_source
+
+
+def candidate_effects():
+    """The candidate effects, as report.json names them."""
+    return list(_lane_keeping.candidate_effects())
+
+
+def _run(item, name):
+    """One run: a log (path, DataFrame, dict of columns), or {"log": ..., "scenario": ..., "log_map": ...}
+    (lk_gap's --log with --scenario and --log-map)."""
+    if isinstance(item, Mapping) and "log" in item:
+        unknown = set(item) - {"log", "scenario", "log_map"}
+        if unknown:
+            raise ValueError(f"{name}: unknown entries {sorted(unknown)} (log, scenario, log_map)")
+        scenario, log_map = item.get("scenario"), item.get("log_map")
+        log = item["log"]
+    else:
+        scenario = log_map = None
+        log = item
+    scenario_source = ""
+    if scenario is not None:
+        scenario_source = os.fspath(scenario) if isinstance(scenario, (str, os.PathLike)) else f"{name} scenario"
+    return {"log": log_source(log, name),
+            "scenario": None if scenario is None else config_layers(scenario),
+            "scenario_source": scenario_source,
+            "log_map": None if log_map is None else config_layers(log_map)}
+
+
+def _runs(items, name):
+    if items is None:
+        return []
+    if isinstance(items, (str, os.PathLike, Mapping)) or hasattr(items, "to_numpy"):
+        items = [items]
+    return [_run(item, f"{name}[{i}]") for i, item in enumerate(items)]
+
+
+def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threads=2, noise_reference_draws=19,
+             coarse_fit_stride=3, progress=None, series=False):
+    """The sim-to-real gap diagnosis, as `lk_gap --config NOMINAL --log ... [--holdout ...] --report DIR`.
+
+    nominal:  the nominal configuration (as simulate() takes it; a `log:` section maps every log's columns)
+    logs:     the training runs: each a CSV or bag path, a pandas DataFrame (the CSV's columns) or a dict of
+              columns, or {"log": ..., "scenario": ..., "log_map": ...} with the run's own scenario (per-run
+              settings: a path, YAML text or dict) and log mapping
+    holdout:  held-out runs, the same forms; None: blocks of the training logs are held out
+    overrides: applied to the nominal last (lk_gap --set)
+    effects:  restrict the candidates (lk_gap --effects); threads, noise_reference_draws, coarse_fit_stride:
+              lk_gap's options of those names
+    progress: a callable given each progress message (lk_gap prints them on stderr)
+    series:   also return the plots' series (residuals.csv, spectrum.csv, overlay.csv) as DataFrames
+
+    Returns report.json as a dict (with series=True: (report, series)). Raises ConfigError and InputError
+    with lk_gap's messages (a DataFrame's rows are named "DataFrame logs[i] row N", counting from 0).
+    """
+    options = {"threads": int(threads), "noise_reference_draws": int(noise_reference_draws),
+               "coarse_fit_stride": int(coarse_fit_stride), "effects": list(effects or [])}
+    text, artifacts = _lane_keeping.diagnose(config_layers(nominal, overrides), _runs(logs, "logs"),
+                                             _runs(holdout, "holdout"), options, progress)
+    report = json.loads(text)
+    if not series:
+        return report
+    import pandas as pd
+    subsystems = ["tracker", "actuator", "steering", "chassis"]
+    overlay = ["y_real", "y_nominal", "y_corrected", "yaw_rate_real", "yaw_rate_nominal", "yaw_rate_corrected",
+               "delta_real", "delta_nominal", "delta_corrected"]
+
+    def frame(first, x, columns, data):
+        table = {first: x}
+        for c in columns:
+            values = data.get(c, [])
+            table[c] = list(values) + [float("nan")] * (len(x) - len(values))
+        return pd.DataFrame(table)
+
+    return report, {
+        "residuals": frame("t", artifacts["residual_t"], subsystems, artifacts["residual"]),
+        "spectrum": frame("f", artifacts["spectrum_f"], subsystems, artifacts["spectrum"]),
+        "overlay": frame("t", artifacts["overlay_t"], overlay, artifacts["overlay"]),
+    }

@@ -1,0 +1,90 @@
+"""diagnose(): report.json of lk_gap, from files and from DataFrames; the log reader's errors."""
+import json
+import os
+
+import numpy as np
+import pandas as pd
+import pytest
+
+from conftest import REPO, run_tool
+
+NOMINAL = os.path.join(REPO, "config", "scenarios", "sinusoid.yaml")
+# A small diagnosis (the module's plumbing is under test, not the diagnosis): two candidates, one thread.
+EFFECTS = ["steering_friction", "lateral_disturbance"]
+GAP_ARGS = ["--effects", ",".join(EFFECTS), "--threads", "1", "--no-plots", "--quiet"]
+OPTIONS = dict(effects=EFFECTS, threads=1)
+SCENARIOS = {"train": {"simulation": {"duration": 8, "log_rate": 100, "initial": {"y": 0.8}}},
+             "held": {"simulation": {"duration": 8, "log_rate": 100, "initial": {"y": -0.6}}}}
+
+
+def without_wall_times(report):
+    report = dict(report)
+    report.pop("wall_seconds")
+    return report
+
+
+@pytest.fixture(scope="module")
+def logs(tmp_path_factory):
+    """The sinusoidal lane with kingpin friction the nominal lacks: a training run and a held-out run from
+    another initial offset, each with its scenario file (8 s at 100 Hz)."""
+    folder = tmp_path_factory.mktemp("gap")
+    runs = {}
+    for name, scenario in SCENARIOS.items():
+        path, scenario_path = str(folder / (name + ".csv")), str(folder / (name + ".yaml"))
+        with open(scenario_path, "w") as f:
+            json.dump(scenario, f)  # JSON is YAML
+        run_tool("lk_simulate", "--config", NOMINAL, "--config", scenario_path, "--set", "steering.coulomb_friction=5",
+                 "--out", path, "--quiet")
+        runs[name] = (path, scenario_path)
+    return folder, runs
+
+
+def lk_gap_report(folder, *args):
+    report_dir = str(folder / "report")
+    code, _, stderr = run_tool("lk_gap", "--config", NOMINAL, *args, "--report", report_dir, *GAP_ARGS, check=False)
+    assert code == 0, stderr
+    with open(os.path.join(report_dir, "report.json")) as f:
+        return json.load(f)
+
+
+def test_the_report_is_lk_gaps_from_files_and_from_frames(lk, logs):
+    folder, runs = logs
+    (train, train_scenario), (held, held_scenario) = runs["train"], runs["held"]
+    expected = lk_gap_report(folder, "--log", train, "--scenario", train_scenario, "--holdout", held, "--scenario",
+                             held_scenario)
+    assert expected["verdict"]["effect"] == "steering_friction"  # the comparison below is of a real diagnosis
+    from_files = lk.diagnose(NOMINAL, [{"log": train, "scenario": train_scenario}],
+                             [{"log": held, "scenario": held_scenario}], **OPTIONS)
+    assert without_wall_times(from_files) == without_wall_times(expected)
+    # The same runs as DataFrames with the scenarios as dicts: only the sources' names differ.
+    frames = {name: pd.read_csv(path, float_precision="round_trip") for name, (path, _) in runs.items()}
+    messages = []
+    from_frames, series = lk.diagnose(NOMINAL, [{"log": frames["train"], "scenario": SCENARIOS["train"]}],
+                                      {"log": frames["held"], "scenario": SCENARIOS["held"]}, **OPTIONS,
+                                      progress=messages.append, series=True)
+    text = json.dumps(without_wall_times(expected))
+    for old, new in ((train_scenario, "logs[0] scenario"), (held_scenario, "holdout[0] scenario"),
+                     (train, "DataFrame logs[0]"), (held, "DataFrame holdout[0]")):
+        text = text.replace(json.dumps(old)[1:-1], new)
+    assert without_wall_times(from_frames) == json.loads(text)
+    assert messages, "progress messages"
+    residuals = series["residuals"]
+    assert list(residuals.columns) == ["t", "tracker", "actuator", "steering", "chassis"]
+    assert len(residuals) > 100 and np.isfinite(residuals["steering"]).any()
+
+
+def test_a_frames_bad_rows_are_named(lk, logs):
+    _, runs = logs
+    train = runs["train"][0]
+    frame = pd.read_csv(train, float_precision="round_trip")
+    frame.loc[5, "t"] = frame.loc[3, "t"]
+    with pytest.raises(lk.InputError, match=r"DataFrame logs\[0\] row 5: column 't': time not strictly increasing"):
+        lk.diagnose(NOMINAL, frame, **OPTIONS)
+    frame = pd.read_csv(train, float_precision="round_trip").drop(columns=["t"])
+    with pytest.raises(lk.InputError, match=r"DataFrame logs\[0\]: missing required column t"):
+        lk.diagnose(NOMINAL, [frame], **OPTIONS)
+    with pytest.raises(lk.ConfigError, match="not_an_effect"):
+        lk.diagnose(NOMINAL, [train], effects=["not_an_effect"])
+    with pytest.raises(lk.ConfigError, match="tracker.k_y"):
+        lk.diagnose(NOMINAL, [{"log": train, "scenario": {"tracker": {"k_y": 0.1}}}], **OPTIONS)
+    assert "steering_friction" in lk.candidate_effects()
