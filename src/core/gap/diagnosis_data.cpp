@@ -17,7 +17,9 @@ std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs) {
     auto log = std::make_shared<LogSignals>(run.log);
     SimConfig config = run.config;
     if (run.initial_from_log) {
-      config = withInitialStateFromLog(config, run.log, log->at(LogSignals::kSigma1, log->start()));
+      // (sigma1 from the logged positions; a log without them starts at 0, the chassis replay estimating it)
+      const double sigma1 = log->has(LogSignals::kSigma1) ? log->at(LogSignals::kSigma1, log->start()) : 0.0;
+      config = withInitialStateFromLog(config, run.log, sigma1);
     }
     out.push_back({std::move(log), std::make_shared<const SimConfig>(std::move(config))});
   }

@@ -51,6 +51,8 @@ struct CandidateFit {
   double train_before = 0.0, train_after = 0.0;
   double heldout_before = 0.0, heldout_after = 0.0;
   double evidence = 0.0;  ///< held-out reduction of the noise-normalised squared residual (see evidenceOf)
+  /// Other forms of the effect whose fit the data cannot tell from this one's (keepBestForms).
+  std::vector<std::string> tied_forms;
   std::map<std::string, SubsystemScore> heldout_scores;
 };
 

@@ -196,6 +196,10 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   if (!log_.delta.empty()) smoothed_[kDelta] = smoothedDerivative(t, log_.delta, windows.steering, 0);
   if (log_.hasSteeringRate()) smoothed_[kDeltaRate] = smoothedDerivative(t, log_.delta_rate, windows.steering, 0);
   else smoothed_[kDeltaRate] = values_[kDeltaRate];
+  // The gyro's and the accelerometer's, for a latency undone along them (sensor_correction.h): over the
+  // pose's window, so that the carry between samples adds little noise of its own.
+  if (!log_.yaw_rate.empty()) smoothed_[kYawRate] = smoothedDerivative(t, log_.yaw_rate, windows.pose, 0);
+  if (!log_.ay.empty()) smoothed_[kLateralAcceleration] = smoothedDerivative(t, log_.ay, windows.pose, 0);
   for (Channel c : {kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration}) {
     noise_[c] = fourthDifferenceNoise(values_[c]);
   }

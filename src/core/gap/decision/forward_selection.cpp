@@ -1,0 +1,178 @@
+#include "lane_keeping/gap/decision/forward_selection.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <set>
+
+#include "lane_keeping/common/parallel_for.h"
+#include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/gap/decision/verdict.h"
+#include "lane_keeping/gap/decision/winner_selection.h"
+#include "lane_keeping/gap/fit/candidate_effects.h"
+#include "lane_keeping/gap/fit/candidate_forms.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+namespace {
+
+/// Each data set under its run's configuration with `change` applied: the nominal of the next round.
+std::vector<Dataset> withChange(const std::vector<Dataset>& data, const ConfigChange& change) {
+  std::vector<Dataset> out;
+  for (const Dataset& set : data) {
+    out.push_back({set.log, std::make_shared<const SimConfig>(changed(*set.config, change)), set.segments});
+  }
+  return out;
+}
+
+/// The subsystem with the largest excess beyond its noise reference: where what is left lies.
+std::string largestNetExcess(const std::map<std::string, SubsystemScore>& scores) {
+  std::string where;
+  double largest = -1.0;
+  for (const auto& [name, score] : scores) {
+    const double net = netExcess(score);
+    if (net > largest) {
+      largest = net;
+      where = name;
+    }
+  }
+  return where;
+}
+
+ConfigChange composed(ConfigChange first, ConfigChange then) {
+  return [first = std::move(first), then = std::move(then)](SimConfig& c) {
+    if (first) first(c);
+    if (then) then(c);
+  };
+}
+
+}  // namespace
+
+VerdictEffect verdictEffect(const CandidateFit& fit, const SimConfig& nominal) {
+  VerdictEffect e;
+  e.effect = fit.effect->name;
+  e.form = fit.effect->form;
+  for (const auto& f : fit.tied_forms) e.form += " or " + f;
+  e.sensor = fit.effect->sensor;
+  for (std::size_t i = 0; i < fit.theta.size(); ++i) {
+    e.params[fit.effect->params[i].name] = fit.theta[i];
+    if (i < fit.sigma.size()) e.param_sigma[fit.effect->params[i].name] = fit.sigma[i];
+  }
+  e.config = configDifference(nominal, fit.corrected);
+  e.evidence = fit.evidence;
+  return e;
+}
+
+ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<const CandidateEffect*>& candidates,
+                                  const FitContext& context, const NoiseNull& null, double gap_before,
+                                  const DiagnosisOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  ForwardSelection out;
+  out.change = leader.change;
+  out.corrected = leader.corrected;
+  out.gap_after = leader.heldout_after;
+  VerdictEffect first = verdictEffect(leader, *context.nominal);
+  first.gap_after = leader.heldout_after;
+  first.share = gap_before > 0.0 ? 1.0 - leader.heldout_after / gap_before : 0.0;
+  out.effects.push_back(first);
+  std::set<std::string> named{leader.effect->sensor ? leader.effect->label() : leader.effect->name};
+  const std::map<std::string, double> reference = null.largestHeldExcess();
+  const std::vector<double> null_totals = null.heldTotals();
+
+  while (static_cast<int>(out.effects.size()) < options.max_effects) {
+    const Clock::time_point start = Clock::now();
+    // What the effects so far leave, on the same data and against the same noise-only draws.
+    const std::vector<Dataset> train = withChange(*context.train, out.change);
+    const std::vector<Dataset> held = withChange(*context.held, out.change);
+    Evaluation base_train, base_held;
+    parallelFor(2, options.threads, [&](std::size_t k) {
+      (k == 0 ? base_train : base_held) = evaluate(nullptr, k == 0 ? train : held, context.available, options.replay);
+    });
+    setReference(base_train.scores, reference);
+    setReference(base_held.scores, reference);
+    const double left = totalExcessSquared(base_held.scores);
+    const double p = monteCarloPValue(left, null_totals);
+    if (null_totals.empty() || p > options.false_alarm_rate) {
+      out.notes.push_back("several effects: what " + std::to_string(out.effects.size()) +
+                          (out.effects.size() == 1 ? " effect leaves" : " effects leave") +
+                          " is within the noise-only draws (held-out total excess " + formatNumber(left) + ", p = " +
+                          formatNumber(std::round(1000.0 * p) / 1000.0) + "): no further effect sought");
+      break;
+    }
+    FitContext next = context;
+    next.nominal = &out.corrected;
+    next.train = &train;
+    next.held = &held;
+    next.nominal_train = &base_train;
+    next.nominal_held = &base_held;
+    // The combined model's closed loop is not checked here: the further effects are small beside the
+    // leader's, whose fit was (or could not be) checked.
+    next.closed_loop_checks = false;
+    next.nominal_bounds = nullptr;
+    next.where_subsystem = largestNetExcess(base_held.scores);
+    std::vector<const CandidateEffect*> round;
+    for (const CandidateEffect* c : candidates) {
+      if (!named.count(c->sensor ? c->label() : c->name)) round.push_back(c);
+    }
+    std::vector<CandidateFit> fits(round.size());
+    parallelFor(round.size(), options.threads, [&](std::size_t k) { fits[k] = fitCandidate(*round[k], next, options); });
+    std::vector<std::string> form_notes;
+    keepBestForms(&fits, &form_notes);
+    const double base_gap = gapOf(base_held.scores, {});
+    std::vector<std::string> rank_notes;
+    const std::vector<RankedEffect> ranking = rankFits(fits, out.corrected, base_gap, &rank_notes);
+    const std::string where = next.where_subsystem;
+    const WinnerSelection pick = selectWinner(
+        ranking, [&](const RankedEffect& r) { return effectChangesSubsystem(r.effect, where, r.form); },
+        pinnedEffects(fits), options.min_further_shrink, options.min_evidence_per_parameter);
+    out.wall_seconds.emplace_back("effect " + std::to_string(out.effects.size() + 1), std::chrono::duration<double>(Clock::now() - start).count());
+    const CandidateFit* added = nullptr;
+    if (pick.winner != nullptr && !pick.winner_pinned) {
+      for (const auto& fit : fits) {
+        if (fit.ok && fit.effect->name == pick.winner->effect && fit.effect->form == primaryForm(pick.winner->form)) {
+          added = &fit;
+        }
+      }
+    }
+    // Its share of the original gap: the gap with it, against the nominal's references; and what it
+    // removes of the total excess, against what noise alone moves it by.
+    const double gap_with = added ? gapOf(context.nominal_held->scores, added->heldout_scores) : out.gap_after;
+    const double share = gap_before > 0.0 ? (out.gap_after - gap_with) / gap_before : 0.0;
+    const double removed = added ? left - totalExcessSquared(added->heldout_scores) : 0.0;
+    const bool beyond_noise = removed > heldSpread(null);
+    if (added == nullptr || share < options.min_effect_share || !beyond_noise) {
+      std::string why = "several effects: what " + std::to_string(out.effects.size()) +
+                        (out.effects.size() == 1 ? " effect leaves" : " effects leave") + " (held-out gap " +
+                        formatNumber(base_gap) + ", mostly in the " + where + " subsystem; p = " +
+                        formatNumber(std::round(1000.0 * p) / 1000.0) + " among the noise-only draws) ";
+      if (added == nullptr) {
+        why += "no further candidate explains";
+        if (pick.top != nullptr) {
+          why += ": the best, " + pick.top->label() + ", removes " + formatNumber(std::round(1000.0 * pick.top->shrink) / 10.0) +
+                 " % of it with evidence " + formatNumber(pick.top->score);
+        }
+      } else if (!beyond_noise) {
+        why += "is reduced by " + added->effect->label() + " by less than the noise-only draws' spread";
+      } else {
+        why += "is explained by " + added->effect->label() + " only for " + formatNumber(std::round(1000.0 * share) / 10.0) +
+               " % of the gap (needs " + formatNumber(100.0 * options.min_effect_share) + " %)";
+      }
+      out.notes.push_back(why);
+      break;
+    }
+    VerdictEffect e = verdictEffect(*added, out.corrected);
+    e.gap_after = gap_with;
+    e.share = share;
+    out.effects.push_back(e);
+    out.added.push_back(*added);
+    out.change = composed(out.change, added->change);
+    out.corrected = added->corrected;
+    out.gap_after = gap_with;
+    named.insert(added->effect->sensor ? added->effect->label() : added->effect->name);
+  }
+  return out;
+}
+
+}  // namespace diagnosis
+}  // namespace lane_keeping
