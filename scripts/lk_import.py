@@ -3,6 +3,8 @@
 
     /usr/bin/python3 scripts/lk_import.py comma2k19 SEGMENT_DIR --out run.csv [--scenario-out run.yaml]
                                           [--rate 100] [--dbc FILE ...]
+    /usr/bin/python3 scripts/lk_import.py aim EXPORT.csv --out run.csv [--scenario-out run.yaml]
+                                          [--start S] [--end S]
 
 comma2k19 (commaai/comma2k19, MIT licence): a segment directory holds numpy arrays, `processed_log/<group>/
 <signal>/{t,value}` and `global_pose/frame_*`. From them:
@@ -25,6 +27,19 @@ steering_wheel_angle [rad] (not the road wheel's: the vehicle file's `log:` mapp
 ratio), torque (the STEERING_LKA command while requested, else 0; bus counts, units unknown: map it
 `unscaled`), torque_eps, torque_driver (counts), steer_request, yaw_rate_imu [rad/s] (the phone's gyro about
 the vertical, for comparison). No delta_des and no lane: openpilot's desired angle is not on the bus.
+aim (an AiM data logger's "AiM CSV File" export, RaceStudio's format; data/aim_super_fj/ holds one): a header
+block of "key","value" rows, a blank row, the channel names, their units, a blank row, then samples on one time
+base. Read: Time [s], GPS Speed [km/h], GPS Heading [deg, clockwise from north: the GNSS course over ground, not
+where the car points], GPS Latitude/Longitude [deg], steering [deg at the steering wheel], LateralAcc and
+InlineAcc [g], YawRate [deg/s]; optional --start/--end cut [s of the log's own Time]. The position goes to the
+local frame as for comma2k19 (x along the first course); psi is the course (the body slip is not removed: the
+log has no heading sensor), unwrapped, with single-sample spikes of an export that interpolated the course
+across +-180 deg replaced by their neighbours' mean (each repair printed). AiM's signs (yaw rate and steering
+positive to the right, LateralAcc positive to the right) are found, not assumed: yaw rate against d(psi)/dt,
+ay against v * yaw rate, the steering-wheel angle against the yaw rate; a negative correlation flips the
+channel and says so. Columns written: t, x, y, psi, yaw_rate, v, ay (schema, SI), steering_wheel_angle [rad,
+positive left] (the vehicle file's `log:` mapping divides by the steer ratio), ax [m/s^2], course_raw_deg (the
+export's heading as logged, for checking). Time restarts at 0 at the cut's first sample.
 Exit status: 0 ok, 2 bad arguments, 4 bad input data (a clear message naming the file).
 """
 import argparse
@@ -260,35 +275,192 @@ def import_comma2k19(segment, dbc_paths, rate, report=print):
     return columns, out
 
 
-def write_scenario(path, out, source):
+# ---- AiM CSV export ------------------------------------------------------------------------------------
+
+G = 9.80665  # standard gravity [m/s^2]: AiM logs accelerations in g
+AIM_CHANNELS = {  # schema use: (AiM channel name, unit it must carry)
+    "time": ("Time", "s"), "speed": ("GPS Speed", "km/h"), "course": ("GPS Heading", "deg"),
+    "lat": ("GPS Latitude", "deg"), "lon": ("GPS Longitude", "deg"), "steering": ("steering", "deg"),
+    "ay": ("LateralAcc", "g"), "ax": ("InlineAcc", "g"), "yaw_rate": ("YawRate", "deg/s"),
+}
+
+
+def read_aim_csv(path):
+    """(metadata {key: [values]}, {channel name: (unit, float array)}) of an "AiM CSV File" export."""
+    import csv
+    try:
+        with open(path, newline="", encoding="utf-8-sig", errors="replace") as f:
+            rows = list(csv.reader(f))
+    except OSError as e:
+        raise InputError("%s: cannot read (%s)" % (path, e.strerror))
+    if not rows or rows[0][:2] != ["Format", "AiM CSV File"]:
+        raise InputError('%s:1: not an AiM CSV export (the first row must be "Format","AiM CSV File")' % path)
+    meta, i = {}, 0
+    while i < len(rows) and any(c.strip() for c in rows[i]):
+        meta[rows[i][0]] = rows[i][1:]
+        i += 1
+    while i < len(rows) and not any(c.strip() for c in rows[i]):
+        i += 1
+    if i + 1 >= len(rows):
+        raise InputError("%s: no channel-name and unit rows after the header block" % path)
+    names, units, first = rows[i], rows[i + 1], i + 2
+    if len(units) != len(names):
+        raise InputError("%s:%d: %d units for %d channels" % (path, i + 2, len(units), len(names)))
+    data = []
+    for number, row in enumerate(rows[first:], first + 1):
+        if not any(c.strip() for c in row):
+            continue
+        if len(row) != len(names):
+            raise InputError("%s:%d: %d values for %d channels" % (path, number, len(row), len(names)))
+        try:
+            data.append([float(c) for c in row])
+        except ValueError:
+            raise InputError("%s:%d: a value that is not a number (%s)" % (path, number, ",".join(row)[:80]))
+    if len(data) < 10:
+        raise InputError("%s: %d samples; at least 10 are needed" % (path, len(data)))
+    table = np.array(data)
+    return meta, {name: (unit.strip(), table[:, k]) for k, (name, unit) in enumerate(zip(names, units))}
+
+
+def sign_agreement(a, b):
+    """(r, how): the correlation of a and b, or, where it is weak (|r| < 0.3: a steady corner has almost no
+    variation to correlate), the uncentred cosine sum(a b) / sqrt(sum a^2 sum b^2), whose sign still holds."""
+    varies = all(x.std() > 1e-6 * (np.abs(x).max() + 1e-300) for x in (a, b))
+    r = correlation(a, b) if varies else 0.0
+    if abs(r) >= 0.3:
+        return r, "r"
+    d = math.sqrt(float((a * a).sum() * (b * b).sum()))
+    return (float((a * b).sum()) / d if d > 0 else 0.0), "cos"
+
+
+def repair_course_spikes(course_deg, report):
+    """Unwrapped course [deg]. A sample that differs from both neighbours by more than 30 deg while they agree
+    within 30 deg is an export's interpolation across +-180 (e.g. 178.4, 89.4, -179.5): it takes their mean."""
+    c = np.degrees(np.unwrap(np.radians(course_deg)))
+    for k in range(1, len(c) - 1):
+        before, after = c[k] - c[k - 1], c[k + 1] - c[k]
+        if abs(before) > 30.0 and abs(after) > 30.0 and abs(c[k + 1] - c[k - 1]) < 30.0:
+            report("  course sample %d: %.4f deg replaced by its neighbours' mean (an interpolation across "
+                   "+-180 deg)" % (k, course_deg[k]))
+            c[k] = 0.5 * (c[k - 1] + c[k + 1])
+            c[k + 1:] -= 360.0 * round((c[k + 1] - c[k]) / 360.0)
+    return np.degrees(np.unwrap(np.radians(c)))
+
+
+def geodetic_to_ecef(lat, lon, h=0.0):
+    """ECEF [m] of geodetic (lat, lon) [rad] at height h [m] on WGS84."""
+    e2 = WGS84_F * (2.0 - WGS84_F)
+    n = WGS84_A / np.sqrt(1.0 - e2 * np.sin(lat) ** 2)
+    return np.column_stack([(n + h) * np.cos(lat) * np.cos(lon), (n + h) * np.cos(lat) * np.sin(lon),
+                            (n * (1.0 - e2) + h) * np.sin(lat)])
+
+
+def import_aim(path, start=None, end=None, report=print):
+    meta, channels = read_aim_csv(path)
+    ch = {}
+    for key, (name, unit) in AIM_CHANNELS.items():
+        if name not in channels:
+            raise InputError('%s: no channel "%s" (has: %s)' % (path, name, ", ".join(sorted(channels))))
+        if channels[name][0] != unit:
+            raise InputError('%s: channel "%s" in "%s", expected "%s"' % (path, name, channels[name][0], unit))
+        ch[key] = channels[name][1]
+    t = ch["time"]
+    if not np.all(np.diff(t) > 0):
+        raise InputError("%s: Time is not strictly increasing" % path)
+    keep = np.ones(len(t), bool)
+    if start is not None:
+        keep &= t >= start - 1e-9
+    if end is not None:
+        keep &= t <= end + 1e-9
+    if keep.sum() < 10:
+        raise InputError("%s: %d samples between --start %s and --end %s" % (path, keep.sum(), start, end))
+    ch = {k: v[keep] for k, v in ch.items()}
+    out = {"t": ch["time"] - ch["time"][0]}
+    report("%s: %s, %s, %s; %d samples at %.1f Hz, log time %.3f-%.3f s" % (
+        path, (meta.get("Vehicle") or ["?"])[0], (meta.get("Session") or ["?"])[0],
+        (meta.get("Date") or ["?"])[0], len(out["t"]), 1.0 / np.median(np.diff(out["t"])), ch["time"][0],
+        ch["time"][-1]))
+    lat, lon = np.radians(ch["lat"]), np.radians(ch["lon"])
+    R = enu_rotation(lat[0], lon[0])
+    enu = (geodetic_to_ecef(lat, lon) - geodetic_to_ecef(lat[:1], lon[:1])) @ R.T
+    course = np.radians(90.0 - repair_course_spikes(ch["course"], report))  # east-north, counter-clockwise
+    turn = course[0]
+    c, s_ = math.cos(turn), math.sin(turn)
+    out["x"] = c * enu[:, 0] + s_ * enu[:, 1]
+    out["y"] = -s_ * enu[:, 0] + c * enu[:, 1]
+    out["psi"] = course - turn
+    report("local frame: origin at %.6f N %.6f E, x axis %.2f deg north of east (the first course)"
+           % (ch["lat"][0], ch["lon"][0], math.degrees(turn)))
+    out["v"] = ch["speed"] / 3.6
+    psi_rate = np.gradient(out["psi"], out["t"])
+    checks = []
+    r = np.radians(ch["yaw_rate"])
+    corr = sign_agreement(r, psi_rate)
+    out["yaw_rate"] = r if corr[0] >= 0 else -r
+    checks.append(("yaw_rate (YawRate) vs d(psi)/dt of the GNSS course", corr))
+    ay = ch["ay"] * G
+    corr = sign_agreement(ay, out["v"] * out["yaw_rate"])
+    out["ay"] = ay if corr[0] >= 0 else -ay
+    checks.append(("ay (LateralAcc) vs v * yaw_rate", corr))
+    sw = np.radians(ch["steering"])
+    corr = sign_agreement(sw, out["yaw_rate"])
+    out["steering_wheel_angle"] = sw if corr[0] >= 0 else -sw
+    checks.append(("steering wheel angle vs yaw_rate", corr))
+    out["ax"] = ch["ax"] * G
+    out["course_raw_deg"] = ch["course"]
+    report("sign checks (correlation r, or cos where r is weak; a negative one flips the channel):")
+    for what, (corr, how) in checks:
+        report("  %-58s %-3s = %+.3f  %s" % (what, how, corr, "as logged" if corr >= 0 else "flipped"))
+    step = np.hypot(np.diff(out["x"]), np.diff(out["y"])) / np.diff(out["t"])
+    mid_v = 0.5 * (out["v"][1:] + out["v"][:-1])
+    report("  speed from positions - GPS speed: mean %+.3f m/s, sd %.3f m/s" % ((step - mid_v).mean(),
+                                                                                 (step - mid_v).std()))
+    report("speed %.1f-%.1f m/s; |ay| up to %.1f m/s^2; %d rows over %.2f s" % (
+        out["v"].min(), out["v"].max(), abs(out["ay"]).max(), len(out["t"]), out["t"][-1]))
+    columns = ["t", "x", "y", "psi", "yaw_rate", "v", "ay", "steering_wheel_angle", "ax", "course_raw_deg"]
+    return columns, out
+
+
+def write_scenario(path, out, source, report=print):
     """A scenario for lk_gap (docs/gap.md, --scenario): the driven path as the lane (waypoints every 5 m of
     x, the trajectory smoothed over 1 s), the duration and the mean speed. The log holds no lane: the driven
-    path stands in for it, so that the nominal closed loop (the noise-only draws) drives where the car drove."""
+    path stands in for it, so that the nominal closed loop (the noise-only draws) drives where the car drove.
+    The suite's waypoint lanes are functions y(x) (x strictly increasing): a path that turns back on itself
+    (a hairpin) cannot be one, and then the scenario holds no lane (said on the report line) and the
+    closed-loop draws run on the vehicle file's path."""
     t, x, y = out["t"], out["x"], out["y"]
     k = max(1, int(round(1.0 / (t[1] - t[0]))))
     kernel = np.ones(k) / k
     xs = np.convolve(x, kernel, mode="same")[k:-k]
     ys = np.convolve(y, kernel, mode="same")[k:-k]
+    turned_back = float(np.max(np.maximum.accumulate(xs) - xs)) if len(xs) else 0.0
     points = []
-    for target in np.arange(math.ceil(xs.min() / 5.0) * 5.0, xs.max(), 5.0):
-        i = int(np.argmin(np.abs(xs - target)))
-        if not points or xs[i] > points[-1][0] + 1.0:
-            points.append((float(xs[i]), float(ys[i])))
-    if len(points) < 4:
-        raise InputError("%s: the car moves too little along x for a waypoint lane" % source)
-    # Straight continuations before and after, so that the lane covers the whole run.
-    (x0, y0), (x1, y1) = points[0], points[1]
-    points.insert(0, (x0 - 50.0, y0 - 50.0 * (y1 - y0) / (x1 - x0)))
-    (xa, ya), (xb, yb) = points[-2], points[-1]
-    points.append((xb + 50.0, yb + 50.0 * (yb - ya) / (xb - xa)))
+    if turned_back <= 1.0:
+        for target in np.arange(math.ceil(xs.min() / 5.0) * 5.0, xs.max(), 5.0):
+            i = int(np.argmin(np.abs(xs - target)))
+            if not points or xs[i] > points[-1][0] + 1.0:
+                points.append((float(xs[i]), float(ys[i])))
+        if len(points) < 4:
+            raise InputError("%s: the car moves too little along x for a waypoint lane" % source)
+        # Straight continuations before and after, so that the lane covers the whole run.
+        (x0, y0), (x1, y1) = points[0], points[1]
+        points.insert(0, (x0 - 50.0, y0 - 50.0 * (y1 - y0) / (x1 - x0)))
+        (xa, ya), (xb, yb) = points[-2], points[-1]
+        points.append((xb + 50.0, yb + 50.0 * (yb - ya) / (xb - xa)))
+    else:
+        report("%s: the driven path turns back on itself (x falls %.0f m below its running maximum): a "
+               "waypoint lane y(x) cannot hold it, so the scenario has no lane" % (path, turned_back))
     try:
         with open(path, "w") as f:
             f.write("# lk_import: the run's own settings for lk_gap --scenario (%s)\n" % source)
             f.write("simulation:\n  name: %s\n  duration: %.2f\n  log_rate: %g\n" %
                     (os.path.splitext(os.path.basename(path))[0], t[-1], round(1.0 / (t[1] - t[0]))))
             f.write("vehicle:\n  speed: %.2f\n" % float(np.mean(out["v"])))
-            f.write("path:\n  type: waypoints\n  waypoints: [%s]\n" %
-                    ", ".join("[%.2f, %.3f]" % p for p in points))
+            if points:
+                f.write("path:\n  type: waypoints\n  waypoints: [%s]\n" %
+                        ", ".join("[%.2f, %.3f]" % p for p in points))
+            else:
+                f.write("# no path: the driven path turns back (x not increasing); see the report line of lk_import\n")
     except OSError as e:
         raise InputError("%s: cannot write (%s)" % (path, e.strerror))
 
@@ -305,17 +477,25 @@ def write_csv(path, columns, out):
 
 def main(argv):
     parser = argparse.ArgumentParser(prog="lk_import", description=__doc__.split("\n")[0])
-    parser.add_argument("dataset", choices=["comma2k19"])
-    parser.add_argument("segment", help="the segment directory (holds processed_log/ and global_pose/)")
+    parser.add_argument("dataset", choices=["comma2k19", "aim"])
+    parser.add_argument("segment", help="comma2k19: the segment directory (holds processed_log/ and global_pose/); "
+                                        "aim: the AiM CSV export")
     parser.add_argument("--out", required=True, help="the CSV to write")
-    parser.add_argument("--rate", type=float, default=100.0, help="sampling rate of the written log [Hz]")
+    parser.add_argument("--rate", type=float, default=100.0, help="comma2k19: sampling rate of the written log [Hz]")
     parser.add_argument("--scenario-out", help="also write the run's scenario (the driven path as the lane) for lk_gap")
-    parser.add_argument("--dbc", action="append", help="DBC file(s) (default: %s)" % os.path.relpath(DEFAULT_DBC, REPO))
+    parser.add_argument("--dbc", action="append", help="comma2k19: DBC file(s) (default: %s)" % os.path.relpath(DEFAULT_DBC, REPO))
+    parser.add_argument("--start", type=float, help="aim: first sample to keep [s of the log's Time]")
+    parser.add_argument("--end", type=float, help="aim: last sample to keep [s of the log's Time]")
     args = parser.parse_args(argv)
     if not (args.rate > 0.0 and math.isfinite(args.rate)):
         parser.error("--rate must be a positive number of Hz, not %s" % args.rate)
+    if args.start is not None and args.end is not None and not args.end > args.start:
+        parser.error("--end (%s) must be after --start (%s)" % (args.end, args.start))
     try:
-        columns, out = import_comma2k19(args.segment, args.dbc or [DEFAULT_DBC], args.rate)
+        if args.dataset == "comma2k19":
+            columns, out = import_comma2k19(args.segment, args.dbc or [DEFAULT_DBC], args.rate)
+        else:
+            columns, out = import_aim(args.segment, args.start, args.end)
         write_csv(args.out, columns, out)
         if args.scenario_out:
             write_scenario(args.scenario_out, out, args.segment)
