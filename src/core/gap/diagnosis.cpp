@@ -152,6 +152,16 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     report.notes.push_back("the fitted effects' closed loops are not checked against the logs (the logs do not hold "
                            "the tracker's inputs and output)");
   }
+  // The subsystems that carry a gap: a net excess beyond the largest noise-only draw's, on held-out or on
+  // training data. A candidate that changes none of them cannot explain anything there is; with no gap
+  // at all (neither test detects one), nothing is fitted.
+  std::set<std::string> carrying;
+  for (const auto* scores : {&nominal_held.scores, &nominal_train.scores}) {
+    for (const auto& [name, score] : *scores) {
+      if (netExcess(score) > 0.0) carrying.insert(name);
+    }
+  }
+  const bool any_gap = report.detection.heldout.detected || report.detection.training.detected;
   std::vector<const CandidateEffect*> candidates;
   for (const auto& c : candidateEffects()) {
     if (!options.effects.empty() && std::find(options.effects.begin(), options.effects.end(), c.name) == options.effects.end()) {
@@ -168,6 +178,14 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
           return !r.log->log().has(c.channel, true);
         })) {
       report.not_testable.push_back({c.label(), "acts on the " + c.channel + " column, which the logs do not hold in known units"});
+      continue;
+    }
+    if (!any_gap) {
+      report.not_fitted.push_back({c.label(), "no gap: the nominal matches the logs to within the noise-only draws"});
+      continue;
+    }
+    if (std::none_of(c.subsystems.begin(), c.subsystems.end(), [&](const std::string& s) { return carrying.count(s) > 0; })) {
+      report.not_fitted.push_back({c.label(), "changes only replays that match the logs to within the noise-only draws"});
       continue;
     }
     candidates.push_back(&c);
@@ -243,7 +261,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   if (winner != nullptr) {
     say("fitting further effects on top of " + winner->effect->label());
     const Clock::time_point more_start = Clock::now();
-    ForwardSelection more = forwardSelection(*winner, candidates, fit_context, null, gap_before, options);
+    ForwardSelection more = forwardSelection(*winner, candidates, fits, fit_context, null, gap_before, options);
     report.verdict.effects = more.effects;
     report.verdict.combined_gap_after = more.gap_after;
     report.verdict.combined_shrink = gap_before > 0.0 ? 1.0 - more.gap_after / gap_before : 0.0;

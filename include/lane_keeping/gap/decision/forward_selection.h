@@ -39,9 +39,11 @@ struct ForwardSelection {
 
 /// Forward selection from `leader` (a fit of `context`, which holds the nominal's evaluations with the
 /// noise reference set) among `candidates`. `gap_before` is the nominal's held-out gap.
+/// `first_round` are the candidates' fits alone: each further fit starts from them (warmStartFit), and only
+/// the candidates that change the subsystem carrying what is left are fitted again.
 ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<const CandidateEffect*>& candidates,
-                                  const FitContext& context, const NoiseNull& null, double gap_before,
-                                  const DiagnosisOptions& options);
+                                  const std::vector<CandidateFit>& first_round, const FitContext& context,
+                                  const NoiseNull& null, double gap_before, const DiagnosisOptions& options);
 
 /// A fitted effect as the verdict names it (parameters, uncertainty, overlay against `nominal`).
 VerdictEffect verdictEffect(const CandidateFit& fit, const SimConfig& nominal);

@@ -9,6 +9,7 @@
 ///     columns:
 ///       delta:  {column: steering_wheel_angle, scale: 0.0667, offset: 0}   # value = scale * raw + offset
 ///       torque: {column: eps_torque, unscaled: true}   # units unknown: marked, not used where they matter
+///       psi:    {column: gnss_course, course: true}    # the direction of travel, not the body's heading
 ///       x:      {column: east}
 ///
 /// A schema column not listed keeps its own name; a listed one is read only from its mapped column.
@@ -26,6 +27,9 @@ struct ColumnMapping {
   double scale = 1.0;      ///< schema value = scale * raw + offset
   double offset = 0.0;
   bool unscaled = false;   ///< the raw values are in unknown units (e.g. torque in bus counts)
+  /// psi only: the column is the course over ground (the direction the car moves, a GNSS receiver's
+  /// heading), not where the body points: it differs by the body slip angle.
+  bool course = false;
   std::string location;    ///< file:line of the entry, for messages
 };
 

@@ -167,6 +167,9 @@ struct GapReport {
   std::vector<std::string> notes;
   std::vector<SkippedSubsystem> skipped_subsystems;  ///< replays the logs cannot feed
   std::vector<UntestableEffect> not_testable;        ///< candidates acting only on skipped subsystems
+  /// Candidates not fitted because they change only subsystems whose replays match the logs to within the
+  /// noise-only draws (or because there is no gap at all): they cannot explain what is there.
+  std::vector<UntestableEffect> not_fitted;
   GapSplit split;
   GapDetection detection;
   GapWhere where;

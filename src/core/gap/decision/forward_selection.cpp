@@ -12,6 +12,7 @@
 #include "lane_keeping/gap/decision/winner_selection.h"
 #include "lane_keeping/gap/fit/candidate_effects.h"
 #include "lane_keeping/gap/fit/candidate_forms.h"
+#include "lane_keeping/gap/fit/candidate_objective.h"
 
 namespace lane_keeping {
 namespace diagnosis {
@@ -65,8 +66,8 @@ VerdictEffect verdictEffect(const CandidateFit& fit, const SimConfig& nominal) {
 }
 
 ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<const CandidateEffect*>& candidates,
-                                  const FitContext& context, const NoiseNull& null, double gap_before,
-                                  const DiagnosisOptions& options) {
+                                  const std::vector<CandidateFit>& first_round, const FitContext& context,
+                                  const NoiseNull& null, double gap_before, const DiagnosisOptions& options) {
   using Clock = std::chrono::steady_clock;
   ForwardSelection out;
   out.change = leader.change;
@@ -78,22 +79,33 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
   out.effects.push_back(first);
   std::set<std::string> named{leader.effect->sensor ? leader.effect->label() : leader.effect->name};
   const std::map<std::string, double> reference = null.largestHeldExcess();
+  std::map<std::string, std::vector<double>> warm;
+  for (const CandidateFit& fit : first_round) {
+    if (fit.ok) warm[fit.effect->label()] = fit.theta;
+  }
   const std::vector<double> null_totals = null.heldTotals();
 
-  while (static_cast<int>(out.effects.size()) < options.max_effects) {
+  const Evaluation* previous_train = context.nominal_train;
+  const Evaluation* previous_held = context.nominal_held;
+  out.added.reserve(static_cast<std::size_t>(std::max(0, options.max_effects)));  // `last` points into it
+  const CandidateFit* last = &leader;
+  std::vector<std::unique_ptr<Evaluation>> bases;  // the bases of the rounds so far, which the next build on
+  while (static_cast<int>(out.effects.size()) < options.max_effects && last->train_evaluation && last->heldout_evaluation) {
     const Clock::time_point start = Clock::now();
     // What the effects so far leave, on the same data and against the same noise-only draws.
     const std::vector<Dataset> train = withChange(*context.train, out.change);
     const std::vector<Dataset> held = withChange(*context.held, out.change);
-    Evaluation base_train, base_held;
-    parallelFor(2, options.threads, [&](std::size_t k) {
-      (k == 0 ? base_train : base_held) = evaluate(nullptr, k == 0 ? train : held, context.available, options.replay);
-    });
+    // What the effects so far leave: the previous base with the last effect's own replays in place (each
+    // fit keeps the replays of the subsystems it changes), no replay of the data again.
+    Evaluation base_train = overlaid(*previous_train, *last->train_evaluation);
+    Evaluation base_held = overlaid(*previous_held, *last->heldout_evaluation);
     setReference(base_train.scores, reference);
     setReference(base_held.scores, reference);
     const double left = totalExcessSquared(base_held.scores);
     const double p = monteCarloPValue(left, null_totals);
-    if (null_totals.empty() || p > options.false_alarm_rate) {
+    // Without noise-only draws (not tested) the net gap decides, as it decided the leader.
+    const bool more = null_totals.empty() ? gapOf(base_held.scores, {}) >= options.detection_gap : p <= options.false_alarm_rate;
+    if (!more) {
       out.notes.push_back("several effects: what " + std::to_string(out.effects.size()) +
                           (out.effects.size() == 1 ? " effect leaves" : " effects leave") +
                           " is within the noise-only draws (held-out total excess " + formatNumber(left) + ", p = " +
@@ -111,9 +123,35 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
     next.closed_loop_checks = false;
     next.nominal_bounds = nullptr;
     next.where_subsystem = largestNetExcess(base_held.scores);
+    next.warm_start = &warm;
+    // Only what can change where the rest lies (a further effect is named only there), and, of what was
+    // fitted alone, only what helps the training data on top of the effects so far at its own optimum
+    // (one replay of the coarse data each, against a fit's few dozen): an effect that made them worse
+    // there was imitating the leader (on the benchmark's friction log every one of them).
+    const std::vector<Dataset> coarse = coarseFitData(train, options.replay.chassis_horizon, options.coarse_fit_stride);
+    std::map<std::set<std::string>, double> base_loss;
     std::vector<const CandidateEffect*> round;
+    std::vector<std::string> screened_out;
     for (const CandidateEffect* c : candidates) {
-      if (!named.count(c->sensor ? c->label() : c->name)) round.push_back(c);
+      if (named.count(c->sensor ? c->label() : c->name) || !c->changes(next.where_subsystem)) continue;
+      const auto solo = warm.find(c->label());
+      if (solo != warm.end()) {
+        const CandidateObjective objective(*c, out.corrected, coarse, options.replay, base_train.sigma1, context.available);
+        const std::set<std::string>& subsystems = objective.subsystems();
+        if (!base_loss.count(subsystems)) {
+          const bool reuse = subsystems.count("chassis") == 0;
+          base_loss[subsystems] =
+              sumOfSquares(fitResiduals(evaluate(nullptr, coarse, subsystems, options.replay, reuse ? &base_train.sigma1 : nullptr)));
+        }
+        if (!(objective.loss(solo->second) < base_loss[subsystems])) {
+          screened_out.push_back(c->label());
+          continue;
+        }
+      }
+      round.push_back(c);
+    }
+    if (!screened_out.empty() && options.progress) {
+      options.progress(std::to_string(screened_out.size()) + " candidates do not help on top at their own optimum");
     }
     std::vector<CandidateFit> fits(round.size());
     parallelFor(round.size(), options.threads, [&](std::size_t k) { fits[k] = fitCandidate(*round[k], next, options); });
@@ -166,6 +204,11 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
     e.share = share;
     out.effects.push_back(e);
     out.added.push_back(*added);
+    bases.push_back(std::make_unique<Evaluation>(std::move(base_train)));
+    previous_train = bases.back().get();
+    bases.push_back(std::make_unique<Evaluation>(std::move(base_held)));
+    previous_held = bases.back().get();
+    last = &out.added.back();
     out.change = composed(out.change, added->change);
     out.corrected = added->corrected;
     out.gap_after = gap_with;

@@ -81,6 +81,18 @@ Evaluation concatenated(Evaluation first, const Evaluation& second) {
   return first;
 }
 
+Evaluation overlaid(Evaluation base, const Evaluation& changed) {
+  for (const auto& [name, replay] : changed.replays) {
+    base.replays[name] = replay;
+    const auto starts = changed.starts.find(name);
+    if (starts != changed.starts.end()) base.starts[name] = starts->second;
+    const auto score = changed.scores.find(name);
+    if (score != changed.scores.end()) base.scores[name] = score->second;
+  }
+  if (changed.replays.count("chassis")) base.sigma1 = changed.sigma1;
+  return base;
+}
+
 std::set<std::string> allSubsystems() {
   const auto& names = subsystemNames();
   return std::set<std::string>(names.begin(), names.end());

@@ -63,15 +63,22 @@ GapLog inputDrivenReferenceLog(const SimConfig& nominal, const LogSignals& log) 
   };
 
   const bool pose = log.has(C::kX) && log.has(C::kY) && log.has(C::kPsi);
+  const bool course = real.psi_is_course;
+  const std::vector<double> yaw_rate = smoothedDerivative(t, real.yaw_rate, kWindow, 0);
   Eigen::VectorXd q = Eigen::VectorXd::Zero(n);
+  // The state the log shows at sample i (tires and an unmeasured lateral velocity at rest).
+  auto fromLog = [&](std::size_t i) {
+    q.setZero();
+    if (pose) {
+      q[0] = real.x[i];
+      q[1] = real.y[i];
+      q[2] = real.psi[i];
+      if (log.has(C::kSigma1)) q[3] = log.samples(C::kSigma1)[i];
+    }
+    q[4] = yaw_rate[i];
+  };
   const double t0 = log.start();
-  if (pose) {
-    q[0] = log.at(C::kX, t0);
-    q[1] = log.at(C::kY, t0);
-    q[2] = log.at(C::kPsi, t0);
-    q[3] = log.at(C::kSigma1, t0);
-  }
-  q[4] = smoothedDerivative(t, real.yaw_rate, kWindow, 0).front();
+  fromLog(0);
   const double speed = log.fastestSpeed(nominal.vehicle.speed);
   const double step = std::min({0.002, tireStep(model.frontTire(), speed), tireStep(model.rearTire(), speed)});
   Rk4 rk4(n);
@@ -81,14 +88,23 @@ GapLog inputDrivenReferenceLog(const SimConfig& nominal, const LogSignals& log) 
   out.t = t;
   out.unscaled = real.unscaled;
   out.mapping = real.mapping;
+  out.psi_is_course = course;
   const double mass = nominal.vehicle.mass;
-  double time = t0;
+  double time = t0, restarted = -1e300;
+  int restarts = 0;
   for (std::size_t i = 0; i < t.size(); ++i) {
     if (t[i] > time) integrate(f, time, t[i], step, q, rk4);
     time = t[i];
     if (!q.allFinite() || std::fabs(q[3]) > 50.0 || std::fabs(q[4]) > 10.0) {
-      throw LaneKeepingError("noise reference for " + real.source + ": the nominal chassis driven by the log's steering "
-                             "leaves the model's domain at t = " + std::to_string(t[i] - t0) + " s");
+      // The nominal car cannot follow the real one's steering here (a real car near its grip limit, a
+      // nominal that spins): it starts again from what the log shows, once in a while. The draws then
+      // hold one jump, which their replays re-initialise over, like any interval's start.
+      if (time - restarted < 1.0 || ++restarts > 10) {
+        throw LaneKeepingError("noise reference for " + real.source + ": the nominal chassis driven by the log's steering "
+                               "leaves the model's domain at t = " + std::to_string(t[i] - t0) + " s");
+      }
+      restarted = time;
+      fromLog(i);
     }
     if (pose) {
       out.x.push_back(q[0]);
@@ -96,8 +112,9 @@ GapLog inputDrivenReferenceLog(const SimConfig& nominal, const LogSignals& log) 
       out.psi.push_back(q[2]);
     }
     out.yaw_rate.push_back(q[4]);
+    if (real.hasLateralAcceleration() || course) f(time, q, q_dot);
+    if (course && pose) out.psi.back() += std::atan2(q[3], last_u);  // the course: heading plus body slip
     if (real.hasLateralAcceleration()) {
-      f(time, q, q_dot);
       out.ay.push_back(q_dot[3] + q[4] * last_u - model.unsensedLateralForce(full.data()) / mass);
     }
     out.delta.push_back(delta[i]);

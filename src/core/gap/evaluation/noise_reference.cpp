@@ -83,6 +83,13 @@ GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log) {
     if (!present) column->clear();
   }
   out.unscaled = real.unscaled;
+  if (real.psi_is_course && !out.psi.empty()) {  // the log's heading is a course: heading plus body slip
+    for (std::size_t i = 0; i < out.psi.size() && i < run.rows.size(); ++i) {
+      const VehicleStateSample& s = run.rows[i].state;
+      out.psi[i] += std::atan2(s.sigma1, std::sqrt(std::max(0.0, s.speed * s.speed - s.sigma1 * s.sigma1)));
+    }
+    out.psi_is_course = true;
+  }
   return out;
 }
 

@@ -183,7 +183,9 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   if (!log_.yaw_rate.empty()) values_[kYawAcceleration] = smoothedDerivative(t, log_.yaw_rate, windows.steering, 1);
   if (!log_.x.empty()) values_[kXDot] = smoothedDerivative(t, log_.x, windows.position, 1);
   if (!log_.y.empty()) values_[kYDot] = smoothedDerivative(t, log_.y, windows.position, 1);
-  if (pose) {
+  // (A course over ground is the velocity's own direction: the lateral velocity across it is 0 by
+  // definition and says nothing of the body's; it is left to the replays to estimate.)
+  if (pose && !log_.psi_is_course) {
     values_[kSigma1].resize(t.size());
     for (std::size_t i = 0; i < t.size(); ++i) {
       values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);

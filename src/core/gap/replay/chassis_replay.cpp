@@ -35,6 +35,9 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   // lateral dynamics do not depend on them on a flat road), the lateral velocity is a nuisance state of
   // each interval with no measurement behind its prior, and yaw rate (and a_y) are compared.
   const bool pose = log.has(C::kX) && log.has(C::kY) && log.has(C::kPsi);
+  // A heading that is the course over ground (log mapping `course: true`) is compared with the model's
+  // heading plus its body slip, and gives no lateral velocity: that is estimated, as without a pose.
+  const bool course = pose && log.log().psi_is_course;
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     imposeLoggedSpeed(model, log, t, &speed_hint);
     const LogSignals::Position here = log.positionAt(t, &hint);
@@ -88,14 +91,15 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   Eigen::VectorXd sigmas(outputs_n);
   for (int c = 0; c < outputs_n; ++c) sigmas[c] = noiseFor(log, channels[c], traces[c].scale);
   // Nuisance initial conditions and their priors: with a pose, (sigma1, psi, y) at their logged values;
-  // without, (sigma1, yaw rate), sigma1's prior a tenth of the speed wide (a body slip angle of 6 degrees:
-  // no measurement of it), the yaw rate's its noise.
+  // without, (sigma1, yaw rate), the yaw rate's its noise. Where the log does not measure sigma1 (no pose,
+  // or a course for a heading) its prior is a tenth of the speed wide: a body slip angle of 6 degrees.
   const std::vector<int> nuisance = pose ? std::vector<int>{3, 2, 1} : std::vector<int>{3, 4};
   const double fastest_speed = log.fastestSpeed(config.vehicle.speed);
+  const double unmeasured_sigma1 = 0.1 * std::max(1.0, fastest_speed);
   const std::vector<double> priors =
-      pose ? std::vector<double>{std::max(log.noise(C::kSigma1), 1e-6), noiseFor(log, C::kPsi, traces[1].scale),
-                                 noiseFor(log, C::kY, traces[2].scale)}
-           : std::vector<double>{0.1 * std::max(1.0, fastest_speed), noiseFor(log, C::kYawRate, traces[0].scale)};
+      pose ? std::vector<double>{course ? unmeasured_sigma1 : std::max(log.noise(C::kSigma1), 1e-6),
+                                 noiseFor(log, C::kPsi, traces[1].scale), noiseFor(log, C::kY, traces[2].scale)}
+           : std::vector<double>{unmeasured_sigma1, noiseFor(log, C::kYawRate, traces[0].scale)};
   Rk4 rk4(n);
   Eigen::VectorXd q_dot(n);
   const auto& times = log.times();
@@ -117,7 +121,7 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
       q0[0] = log.at(C::kX, t0);
       q0[1] = log.at(C::kY, t0);
       q0[2] = log.at(C::kPsi, t0);
-      q0[3] = log.at(C::kSigma1, t0);
+      if (!course) q0[3] = log.at(C::kSigma1, t0);
     }
     q0[4] = log.at(C::kYawRate, t0);
     if (front_n + rear_n > 0) {
@@ -125,7 +129,7 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
       Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
       const auto logged = [&](double t) {
         const LogSignals::Position here = log.positionAt(t);
-        motion[3] = pose ? log.at(C::kSigma1, here) : 0.0;
+        motion[3] = log.has(C::kSigma1) ? log.at(C::kSigma1, here) : 0.0;
         motion[4] = log.at(C::kYawRate, here);
         assemble(t, motion);
       };
@@ -151,13 +155,12 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
           outputs.bottomRows(rows - k).setZero();
           return false;
         }
+        if (with_ay || course) f(t, q, q_dot);  // (last_u: the forward velocity of G at this state)
         row[0] = q[4];
-        row[1] = q[2];
+        row[1] = course ? q[2] + std::atan2(q[3], last_u) : q[2];
         row[2] = q[1];
-        if (with_ay) {
-          f(t, q, q_dot);  // a_y = sigma1' + sigma2 u at this state, less what the accelerometer does not sense
-          row[3] = q_dot[3] + q[4] * last_u - model.unsensedLateralForce(full.data()) / mass;
-        }
+        // a_y = sigma1' + sigma2 u at this state, less what the accelerometer does not sense.
+        if (with_ay) row[3] = q_dot[3] + q[4] * last_u - model.unsensedLateralForce(full.data()) / mass;
         for (int c = 0; c < outputs_n; ++c) outputs(k, c) = row[slot[c]];
         outputs(k, outputs_n) = q[3];  // sigma1: projected, not compared
       }

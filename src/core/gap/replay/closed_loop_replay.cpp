@@ -26,7 +26,7 @@ SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double 
   init.delta = truth.at(LogSignals::kDelta, t0);
   init.sigma2 = truth.at(LogSignals::kYawRate, t0);
   init.sigma3 = truth.at(LogSignals::kDeltaRate, t0);
-  init.sigma1 = std::isfinite(sigma1_0) ? sigma1_0 : truth.at(LogSignals::kSigma1, t0);
+  init.sigma1 = std::isfinite(sigma1_0) ? sigma1_0 : (truth.has(LogSignals::kSigma1) ? truth.at(LogSignals::kSigma1, t0) : 0.0);
   config.simulation.duration = std::min(duration, log.end() - t0);
   config.tracker.excitation_clock_offset = t0;  // the simulation's t = 0 is the log's t0
   config.simulation.log_rate = log_rate;

@@ -3,7 +3,7 @@
 // Layout (keys in this order; every GapReport field appears):
 //   { "format": "lane_keeping.gap_report", "version": 1,
 //     "logs": [..], "heldout": [..], "rows_used": N, "rows_skipped": N, "notes": [..],
-//     "skipped_subsystems": [{"name", "reason"}], "not_testable": [{"effect", "reason"}],
+//     "skipped_subsystems": [{"name", "reason"}], "not_testable": [{"effect", "reason"}], "not_fitted": [..],
 //     "split": { "method", "coverage": {kind: held-out share} },
 //     "detection": { "draws", "false_alarm_rate", "heldout": {"tested", "value", "p_value", "null_median",
 //                    "null_max", "detected"}, "training": {..} }  (not tested: p_value null, no "detected"),
@@ -177,6 +177,8 @@ OrderedJson toJson(const GapReport& r) {
   for (const auto& s : r.skipped_subsystems) out["skipped_subsystems"].push_back({{"name", s.name}, {"reason", s.reason}});
   out["not_testable"] = OrderedJson::array();
   for (const auto& e : r.not_testable) out["not_testable"].push_back({{"effect", e.effect}, {"reason", e.reason}});
+  out["not_fitted"] = OrderedJson::array();
+  for (const auto& e : r.not_fitted) out["not_fitted"].push_back({{"effect", e.effect}, {"reason", e.reason}});
   out["split"] = OrderedJson{{"method", r.split.method}, {"coverage", numberMap(r.split.coverage)}};
   out["detection"] = OrderedJson{{"draws", r.detection.draws},
                                  {"false_alarm_rate", number(r.detection.false_alarm_rate)},
@@ -356,6 +358,12 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "effect", &u.effect, true);
     r.get(e, p, "reason", &u.reason);
     rep.not_testable.push_back(u);
+  });
+  r.forEach(j, root, "not_fitted", false, [&](const Json& e, const std::string& p) {
+    UntestableEffect u;
+    r.get(e, p, "effect", &u.effect, true);
+    r.get(e, p, "reason", &u.reason);
+    rep.not_fitted.push_back(u);
   });
   if (const Json* s = r.member(j, root, "split", false)) {
     r.get(*s, root + ".split", "method", &rep.split.method);

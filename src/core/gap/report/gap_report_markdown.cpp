@@ -149,6 +149,11 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
     for (const auto& e : r.not_testable) names.push_back(e.effect + " (" + e.reason + ")");
     out << "- not testable on these logs (not rejected): " << join(names, "; ") << "\n";
   }
+  if (!r.not_fitted.empty()) {
+    std::vector<std::string> names;
+    for (const auto& e : r.not_fitted) names.push_back(e.effect);
+    out << "- not fitted (" << r.not_fitted.front().reason << "): " << join(names, ", ") << "\n";
+  }
   if (!r.split.method.empty()) {
     std::vector<std::string> coverage;
     for (const auto& [kind, share] : r.split.coverage) coverage.push_back(kind + " " + percent(share));
