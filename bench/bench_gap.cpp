@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <ctime>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -71,6 +72,7 @@ int main(int argc, char** argv) {
     options.effects = effects;
     options.coarse_fit_stride = coarse_stride;
     const auto start = std::chrono::steady_clock::now();
+    const std::clock_t cpu_start = std::clock();
     const GapReport report = diagnoseGap(nominal, {log}, {}, options);
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     std::printf("%7.0f Hz %10zu %12.1f s %22s\n", rate, log.size(), wall, report.verdict.effect.c_str());
@@ -78,6 +80,11 @@ int main(int argc, char** argv) {
     for (const auto& [stage, seconds] : report.wall_seconds) std::printf(" %s %.1f s;", stage.c_str(), seconds);
     std::printf("\n");
     std::printf("           reason: %s\n", report.verdict.reason.c_str());
+    std::printf("           effects named:");
+    for (const auto& e : report.verdict.effects) {
+      std::printf(" %s%s share %.1f %%;", e.effect.c_str(), e.form.empty() ? "" : (" (" + e.form + ")").c_str(), 100.0 * e.share);
+    }
+    std::printf("\n           CPU time of the process: %.1f s\n", static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC);
     std::size_t checked = 0;  // closed loops run: the rest could not change the verdict (closed_loop_checks.h)
     for (const auto& r : report.ranking) checked += r.closed_loop_checked ? 1 : 0;
     std::printf("           closed loops checked: %zu of the %zu ranked effects\n", checked, report.ranking.size());

@@ -29,6 +29,12 @@ struct DiagnosisOptions {
   double untouched_share = 0.25;
   double half_explanation = 0.5;
   double min_evidence_per_parameter = 50.0;  ///< held-out evidence a candidate needs per fitted parameter
+  /// Several effects at once (forward_selection.h): at most this many named, each further one removing
+  /// at least min_further_shrink of what the effects before it leave and min_effect_share of the
+  /// original gap, by more than the noise-only draws' spread.
+  int max_effects = 3;
+  double min_further_shrink = 0.1;
+  double min_effect_share = 0.02;
   double upstream_share = 0.2;      ///< chassis excess (relative to steering) that makes the chassis the "where"
   /// Above 1: a fit's coordinate search and first polish run on every coarse_fit_stride-th piece of the
   /// training data, one Levenberg-Marquardt step on all of it (candidate_fit.h). At 3 (the default since

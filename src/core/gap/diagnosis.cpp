@@ -8,6 +8,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/parallel_for.h"
+#include "lane_keeping/gap/decision/forward_selection.h"
 #include "lane_keeping/gap/decision/how_far.h"
 #include "lane_keeping/gap/decision/noise_null.h"
 #include "lane_keeping/gap/decision/partial_explanation.h"
@@ -175,6 +176,16 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     report.notes.push_back("the fitted effects' closed loops are not checked against the logs (the logs do not hold "
                            "the tracker's inputs and output)");
   }
+  // The subsystems that carry a gap: a net excess beyond the largest noise-only draw's, on held-out or on
+  // training data. A candidate that changes none of them cannot explain anything there is; with no gap
+  // at all (neither test detects one), nothing is fitted.
+  std::set<std::string> carrying;
+  for (const auto* scores : {&nominal_held.scores, &nominal_train.scores}) {
+    for (const auto& [name, score] : *scores) {
+      if (netExcess(score) > 0.0) carrying.insert(name);
+    }
+  }
+  const bool any_gap = report.detection.heldout.detected || report.detection.training.detected;
   std::vector<const CandidateEffect*> candidates;
   for (const auto& c : candidateEffects()) {
     if (!options.effects.empty() && std::find(options.effects.begin(), options.effects.end(), c.name) == options.effects.end()) {
@@ -184,6 +195,21 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
       std::string changes;
       for (const auto& s : c.subsystems) changes += (changes.empty() ? "" : ", ") + s;
       report.not_testable.push_back({c.label(), "changes only the " + changes + " replay, which the logs cannot feed"});
+      continue;
+    }
+    // A sensor error on a channel the logs lack (or hold in unknown units) changes nothing to fit.
+    if (!c.channel.empty() && std::any_of(runs.begin(), runs.end(), [&](const RunData& r) {
+          return !r.log->log().has(c.channel, true);
+        })) {
+      report.not_testable.push_back({c.label(), "acts on the " + c.channel + " column, which the logs do not hold in known units"});
+      continue;
+    }
+    if (!any_gap) {
+      report.not_fitted.push_back({c.label(), "no gap: the nominal matches the logs to within the noise-only draws"});
+      continue;
+    }
+    if (std::none_of(c.subsystems.begin(), c.subsystems.end(), [&](const std::string& s) { return carrying.count(s) > 0; })) {
+      report.not_fitted.push_back({c.label(), "changes only replays that match the logs to within the noise-only draws"});
       continue;
     }
     candidates.push_back(&c);
@@ -240,7 +266,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   context.detection = report.detection;
   context.partial_of = [&](const RankedEffect& ranked) {
     for (const auto& fit : fits) {
-      if (fit.ok && fit.effect->name == ranked.effect) {
+      if (fit.ok && fit.effect->name == ranked.effect && fit.effect->form == primaryForm(ranked.form)) {
         return partialExplanation(fit, ranked, report.where.subsystem, nominal_held, held, null, gap_before, options);
       }
     }
@@ -248,11 +274,34 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   };
   report.verdict = decideVerdict(report.ranking, context, options);
 
-  // ---- 4. How far: the gap before and after the winner (how_far.h) ---------------------------------
   const CandidateFit* winner = nullptr;
   for (const auto& fit : fits) {
-    if (fit.ok && fit.effect->name == report.verdict.effect) winner = &fit;
+    if (fit.ok && fit.effect->name == report.verdict.effect && fit.effect->form == primaryForm(report.verdict.form)) {
+      winner = &fit;
+    }
   }
+  // ---- Several effects at once: the others fitted on top of the leader (forward_selection.h) ---------
+  CandidateFit combined;
+  if (winner != nullptr) {
+    say("fitting further effects on top of " + winner->effect->label());
+    const Clock::time_point more_start = Clock::now();
+    ForwardSelection more = forwardSelection(*winner, candidates, fits, fit_context, null, gap_before, options);
+    report.verdict.effects = more.effects;
+    report.verdict.combined_gap_after = more.gap_after;
+    report.verdict.combined_shrink = gap_before > 0.0 ? 1.0 - more.gap_after / gap_before : 0.0;
+    report.notes.insert(report.notes.end(), more.notes.begin(), more.notes.end());
+    for (const auto& stage : more.wall_seconds) report.wall_seconds.push_back(stage);
+    if (more.effects.size() > 1) {
+      // How far: the corrected model holds every effect named.
+      combined = more.added.back();
+      combined.change = more.change;
+      combined.corrected = more.corrected;
+      winner = &combined;
+      report.wall_seconds.emplace_back("further effects", secondsSince(more_start));
+    }
+  }
+
+  // ---- 4. How far: the gap before and after the winner (how_far.h) ---------------------------------
   if (options.closed_loop) say("closed-loop replays");
   const Clock::time_point how_far_start = Clock::now();
   DiagnosisOptions how_far_options = options;

@@ -20,7 +20,9 @@ std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs) {
     auto log = std::make_shared<LogSignals>(run.log);
     SimConfig config = run.config;
     if (run.initial_from_log) {
-      config = withInitialStateFromLog(config, run.log, log->at(LogSignals::kSigma1, log->start()));
+      // (sigma1 from the logged positions; a log without them starts at 0, the chassis replay estimating it)
+      const double sigma1 = log->has(LogSignals::kSigma1) ? log->at(LogSignals::kSigma1, log->start()) : 0.0;
+      config = withInitialStateFromLog(config, run.log, sigma1);
     }
     // The identification excitation on the clock the log's delta_des shows, not on the log's t by
     // assumption: a log whose t was shifted replayed it out of phase (excitation_clock.h).

@@ -22,7 +22,10 @@ VehiclePlant::VehiclePlant(SingleTrackModel model, const InitialState& initial, 
 void VehiclePlant::refresh(double torque) {
   model_.derivative(x_.data(), torque, x_dot_at_sample_.data(), &outputs_);
   sample_torque_ = torque;
-  if (!sensors_.passThrough()) sensors_.record(t_, truePose(), wheel(), column());
+  if (!sensors_.passThrough()) {
+    sensors_.record(t_, truePose(), wheel(), column(),
+                    outputs_.lateral_acceleration - model_.unsensedLateralForce(x_.data()) / model_.params().mass);
+  }
 }
 
 VehicleStateSample VehiclePlant::sample() const {

@@ -85,6 +85,62 @@ TEST(SensorModel, YawRateBiasIsAddedToWhatTheTrackerAndTheLogRead) {
   EXPECT_DOUBLE_EQ(reported.psi, 0.1);
 }
 
+TEST(SensorModel, GyroGainLatencyAndBiasReportAnEarlierScaledRate) {
+  // Gain 0.85, latency 0.1 s, bias -0.007 rad/s: the rate reported at t is 0.85 r(t - 0.1) - 0.007
+  // (records every 10 ms: the latency falls on one), the pose untouched.
+  SensorParams p;
+  p.yaw_rate_scale = 0.85;
+  p.yaw_rate_latency = 0.1;
+  p.yaw_rate_bias = -0.007;
+  SensorModel sensors(p, false);
+  auto truthAt = [](double t) { return PoseSample{t, 0.1 * t, 0.02 * t, 15.0, 0.0, 0.05 * std::sin(3.0 * t)}; };
+  // (Read as the plant reads it: after recording each step; the history keeps only the latency's span.)
+  int checked = 0;
+  for (int k = 0; k <= 100; ++k) {
+    const double t = 0.01 * k;
+    sensors.record(secondsToNanoseconds(t), truthAt(t), {}, {}, 0.0);
+    if (k != 30 && k != 55 && k != 100) continue;
+    const PoseSample reported = sensors.pose(secondsToNanoseconds(t), truthAt(t));
+    EXPECT_NEAR(reported.yaw_rate, 0.85 * truthAt(0.01 * (k - 10)).yaw_rate - 0.007, 1e-12) << "t = " << t;
+    EXPECT_DOUBLE_EQ(reported.y, truthAt(t).y);
+    EXPECT_DOUBLE_EQ(reported.psi, truthAt(t).psi);
+    ++checked;
+  }
+  EXPECT_EQ(checked, 3);
+}
+
+TEST(SensorModel, SteeringAngleOffsetAndGainReachTheActuatorAndTheLog) {
+  // The actuator reads the angle through the sensor's gain and offset, and the log records the same
+  // reading; undoing the sensor gives the wheel's angle back.
+  SensorParams p;
+  p.steering_angle_bias = 0.002;
+  p.steering_angle_scale = 1.1;
+  const SensorModel sensors(p, false);
+  EXPECT_FALSE(sensors.passThrough());
+  const SteeringMeasurement wheel{0.01, 0.2};
+  const SteeringMeasurement read = sensors.actuatorAngle(0, wheel, wheel);
+  EXPECT_DOUBLE_EQ(read.delta, 1.1 * 0.01 + 0.002);
+  EXPECT_DOUBLE_EQ(read.delta_rate, 1.1 * 0.2);
+  VehicleStateSample truth;
+  truth.delta = 0.01;
+  truth.sigma3 = 0.2;
+  const VehicleStateSample logged = sensors.sample(0, truth, 0.0, 1000.0);
+  EXPECT_DOUBLE_EQ(logged.delta, read.delta);
+  EXPECT_DOUBLE_EQ(logged.sigma3, read.delta_rate);
+  EXPECT_DOUBLE_EQ(p.trueSteeringAngle(logged.delta), 0.01);
+}
+
+TEST(SensorModel, AccelerometerOffsetAndLatency) {
+  const RunResult exact = run("sinusoid.yaml", {"simulation.duration=6", "simulation.log_rate=100"});
+  const RunResult r = run("sinusoid.yaml", {"sensors.lateral_acceleration_bias=0.07",
+                                            "sensors.lateral_acceleration_latency=0.05", "simulation.duration=6",
+                                            "simulation.log_rate=100"});
+  for (std::size_t i = 5; i < r.rows.size(); ++i) {
+    ASSERT_NEAR(r.rows[i].state.lateral_acceleration, exact.rows[i - 5].state.lateral_acceleration + 0.07, 1e-12);
+    ASSERT_EQ(r.rows[i].state.y, exact.rows[i].state.y);
+  }
+}
+
 TEST(SensorModel, ColumnSensorClosesTheActuatorOnTheMotorSide) {
   // A compliant column: with the sensor on the motor side the actuator's measurement is the column
   // angle, while the log's delta stays the road wheel's; the two differ by the twist M / k_c.

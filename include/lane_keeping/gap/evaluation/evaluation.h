@@ -40,6 +40,11 @@ Evaluation evaluate(const ConfigChange& change, const std::vector<Dataset>& data
 /// starts and scores, without replaying A and B again (the diagnosis's "where" report of all the data).
 Evaluation concatenated(Evaluation first, const Evaluation& second);
 
+/// `base` with the subsystems `changed` replayed (the same data sets) in their place: the evaluation of a
+/// change that alters only those, from the base's and its own (the chassis's lateral velocity estimate
+/// with the chassis).
+Evaluation overlaid(Evaluation base, const Evaluation& changed);
+
 /// Every subsystem name (subsystemNames()).
 std::set<std::string> allSubsystems();
 

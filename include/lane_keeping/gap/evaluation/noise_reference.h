@@ -12,15 +12,18 @@
 /// replay is 0 or a few thousandths, depending on the draw). Measured on the gap benchmark's 12 no-effect logs: steering excess
 /// 0.0018-0.0035 (the reference gives 0.0022-0.0035 for the same manoeuvres), chassis 0-0.003 (a
 /// trace crossing the noise threshold or not), against 0.006-0.05 for the hidden effects.
+#include <map>
 #include <string>
 
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/log/gap_log.h"
+#include "lane_keeping/gap/evaluation/sensor_character.h"
 #include "lane_keeping/gap/log/log_signals.h"
 
 namespace lane_keeping {
 
-/// 1-sigma white noise per logged channel.
+/// 1-sigma white noise per logged channel, and where a channel's sensor does more than add white noise
+/// (quantises, holds, colours: sensor_character.h), its character.
 struct SensorNoise {
   double position = 0.01;     ///< x, y [m]
   double heading = 5e-4;      ///< psi [rad]
@@ -30,12 +33,16 @@ struct SensorNoise {
   double torque = 0.2;        ///< [N m]
   double lateral_acceleration = 0.02;  ///< [m/s^2]
   double speed = 0.02;        ///< [m/s]
+  /// Per schema column ("yaw_rate", "delta", ...): its character where not plain white noise.
+  std::map<std::string, ChannelCharacter> character{};
 };
 
-/// Adds Gaussian white noise (reproducible from `seed`) to every measured column present.
+/// Adds noise (reproducible from `seed`) to every measured column present: Gaussian white noise at the
+/// channel's level, or noise of its character (quantised, held, coloured) where it has one.
 void addSensorNoise(GapLog& log, const SensorNoise& noise, unsigned seed);
 
-/// The noise levels a log shows (LogSignals::noise, fourth differences).
+/// The noise a log shows: white levels from fourth differences (LogSignals::noise), and each channel's
+/// character (estimateCharacter) where it is more than white noise.
 SensorNoise estimatedNoise(const LogSignals& log);
 
 /// The nominal closed loop over the span of `log` (times shifted to the log's start), sampled at its

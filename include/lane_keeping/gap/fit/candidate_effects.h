@@ -13,12 +13,21 @@
 ///   cornering_stiffness  front_scale, rear_scale (1)             tire.{front,rear}.lateral_stiffness (x scale)
 ///   lateral_disturbance  force (N), moment (N m)                 disturbance.lateral_force, .yaw_moment
 ///   pose_bias            y (m), psi (rad)                        tracker.pose_bias_y, .pose_bias_psi (+)
-///     (localisation)     psi (rad)                               sensors.pose_bias_psi (+): tracker and log
 ///   steering_compliance  stiffness (N m/rad), damping (N m s/rad), steering.column_stiffness, .column_damping,
 ///                        inertia (kg m^2)                          .column_inertia
 ///     (motor_sensor)     the same                                + steering.angle_sensor = column
 ///   lateral_disturbance (road_bank): the same as lateral_disturbance + disturbance.kind = road_bank
 ///   inertia              yaw_scale, mass_scale (1)               vehicle.yaw_inertia, vehicle.mass (x scale)
+/// and the sensor and data errors every real log carries (sim/sensor_params.h; the replays undo them,
+/// log/sensor_correction.h), each named by its channel (the form):
+///   sensor_offset        bias (rad/s | rad | rad | m/s^2)        sensors.{yaw_rate_bias, steering_angle_bias,
+///     (yaw_rate | steering_angle | heading | lateral_acceleration)          pose_bias_psi, lateral_acceleration_bias} (+)
+///   sensor_scale         scale (1)                               sensors.{yaw_rate_scale, steering_angle_scale} (x)
+///     (yaw_rate | steering_angle: a steering ratio other than the log's conversion)
+///   sensor_latency       latency (s)                             sensors.{yaw_rate_latency, steering_angle_latency,
+///     (yaw_rate | steering_angle | pose | lateral_acceleration)           pose_latency, lateral_acceleration_latency} (+)
+/// A heading mount offset is sensor_offset (heading): the localisation bias the log records (until this
+/// round the `localisation` form of pose_bias; pose_bias now names the offset only the tracker sees).
 #include <functional>
 #include <map>
 #include <string>
@@ -52,19 +61,33 @@ struct CandidateEffect {
   /// Where the effect sits, for effects with several placements (docs/gap.md, "Where each candidate
   /// acts"): each form is fitted, the one that fits the training data best stands for the effect.
   std::string form;
+  /// A sensor or data error (sensor_offset, sensor_scale, sensor_latency), not physics: a physical effect
+  /// is named only where it beats the sensor explanations by its evidence (winner_selection.h).
+  bool sensor = false;
+  /// The logged column the effect acts on ("" = none in particular): without it in the log (or with it
+  /// in unknown units) the effect cannot be tested.
+  std::string channel;
 
-  /// "pose_bias (localisation)", or the bare name for an effect with one form.
+  /// "steering_compliance (motor_sensor)", or the bare name for an effect with one form.
   std::string label() const { return form.empty() ? name : name + " (" + form + ")"; }
+  /// Whether this form changes the replay of `subsystem`.
+  bool changes(const std::string& subsystem) const;
 };
 
-/// The eleven candidates, in DESIGN §5 order, with the further forms of pose_bias, steering_compliance
-/// and lateral_disturbance after their first.
+/// The eleven physical candidates, in DESIGN §5 order, with the further forms of steering_compliance and
+/// lateral_disturbance after their first; then the sensor errors, one form per channel.
 const std::vector<CandidateEffect>& candidateEffects();
+/// Whether the named effect is a sensor or data error (sensor_offset, sensor_scale, sensor_latency).
+bool isSensorEffect(const std::string& name);
 /// The first form of the named effect.
 const CandidateEffect& candidateEffect(const std::string& name);
-/// Whether the named effect, in any of its forms, changes the replay of `subsystem` (a candidate can be
-/// the cause of a gap only in a subsystem it changes).
-bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem);
+/// Whether the named effect, in its form `form` (any of its forms when "") changes the replay of
+/// `subsystem` (a candidate can be the cause of a gap only in a subsystem it changes).
+bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem, const std::string& form = "");
+
+/// The form a fit stands for when the report names several it cannot tell apart ("aerodynamic or
+/// road_bank" -> "aerodynamic": the one fitted).
+std::string primaryForm(const std::string& form);
 
 /// Pairs the data of a lane-keeping run cannot always tell apart (reported as such when both score
 /// close to the winner): each effect's known look-alikes.

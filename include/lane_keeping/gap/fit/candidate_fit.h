@@ -33,6 +33,9 @@ struct FitContext {
   /// verdict needs them.
   std::string where_subsystem;
   NominalBounds* nominal_bounds = nullptr;  ///< the nominal's closed loops, shared by the fits' checks
+  /// Where a fit may start near its optimum (a further effect fitted on top of others, whose parameters
+  /// alone are known: forward_selection.h), by CandidateEffect::label: warmStartFit instead of the search.
+  const std::map<std::string, std::vector<double>>* warm_start = nullptr;
 };
 
 struct CandidateFit {
@@ -51,7 +54,12 @@ struct CandidateFit {
   double train_before = 0.0, train_after = 0.0;
   double heldout_before = 0.0, heldout_after = 0.0;
   double evidence = 0.0;  ///< held-out reduction of the noise-normalised squared residual (see evidenceOf)
+  /// Other forms of the effect whose fit the data cannot tell from this one's (keepBestForms).
+  std::vector<std::string> tied_forms;
   std::map<std::string, SubsystemScore> heldout_scores;
+  /// The replays behind the scores (of the subsystems the effect changes): on top of them a further effect
+  /// is fitted without replaying the data again (forward_selection.h).
+  std::shared_ptr<const Evaluation> train_evaluation, heldout_evaluation;
 };
 
 /// Minimises the loss over parameter j with the others fixed: a grid over [lo, hi] (log-spaced for
@@ -96,6 +104,11 @@ std::vector<double> polish(const CandidateObjective& objective, std::vector<doub
 /// keeps its best point, and `note` (if given) says so.
 std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::size_t coarse_stride = 1,
                                     std::string* note = nullptr);
+
+/// The fit from `theta`, a point near the optimum: a profile effect's line search over the narrowed range
+/// of each parameter (narrowedRange), a smooth one's Levenberg-Marquardt polish on the coarse data and one
+/// step on all of it. A third to a half of leastSquaresFit's work.
+std::vector<double> warmStartFit(const CandidateObjective& objective, std::vector<double> theta, std::size_t coarse_stride);
 
 /// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta (`objective`
 /// over `context.train`, its replays the training scores). Its p + 2 replays run on `threads` threads (the

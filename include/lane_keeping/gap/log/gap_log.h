@@ -35,6 +35,9 @@ struct GapLog {
   /// present, but not used where their scale matters.
   std::set<std::string> unscaled;
   std::string mapping;            ///< the log mapping applied ("" = none)
+  /// psi is the course over ground, not the body's heading (log mapping `course: true`): the replays
+  /// compare it with the model's heading plus body slip, and the lateral velocity is not derived from it.
+  bool psi_is_course = false;
 
   std::size_t rows_read = 0;      ///< data rows in the file
   std::size_t rows_skipped = 0;   ///< rows dropped for NaN/Inf (counted in the report)

@@ -9,6 +9,7 @@
 ///     columns:
 ///       delta:  {column: steering_wheel_angle, scale: 0.0667, offset: 0}   # value = scale * raw + offset
 ///       torque: {column: eps_torque, unscaled: true}   # units unknown: marked, not used where they matter
+///       psi:    {column: gnss_course, course: true}    # the direction of travel, not the body's heading
 ///       x:      {column: east}
 ///       yaw_rate: {column: yaw, shift: 0.2}            # logged 0.2 s late (column_shift.h)
 ///       vy:     {column: lateral_velocity}             # optional: lateral velocity of G, body frame
@@ -31,6 +32,9 @@ struct ColumnMapping {
   /// [s] the column was logged this late (negative: early): the schema value at t is the raw value at
   /// t + shift, interpolated linearly on the log's time base (column_shift.h). |shift| <= kMaxColumnShift.
   double shift = 0.0;
+  /// psi only: the column is the course over ground (the direction the car moves, a GNSS receiver's
+  /// heading), not where the body points: it differs by the body slip angle.
+  bool course = false;
   std::string location;    ///< file:line of the entry, for messages
 };
 

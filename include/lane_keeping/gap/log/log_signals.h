@@ -16,6 +16,7 @@
 
 #include "lane_keeping/gap/log/gap_log.h"
 #include "lane_keeping/gap/log/sample_index.h"
+#include "lane_keeping/sim/sensor_params.h"
 
 namespace lane_keeping {
 
@@ -94,7 +95,8 @@ class LogSignals {
   /// Same, starting the search from `*hint` (updated): O(1) for the near-monotone queries of a replay.
   double at(Channel c, double t, std::size_t* hint) const { return at(c, positionAt(t, hint)); }
   /// The sample nearest to t, carried to t along the channel's smoothed curve (x, y, psi, delta,
-  /// delta_rate; other channels: plain interpolation): the noise of one sample wherever t falls.
+  /// delta_rate, yaw_rate, ay; other channels: plain interpolation): the noise of one sample wherever t
+  /// falls.
   /// Linear interpolation between white-noisy samples averages two of them, so its noise midway is
   /// 1 / sqrt(2) of a sample's, and a delay fitted through it drifts to half-sample offsets (the
   /// tracker replay fitted 18.9 ms of extra sensing delay on noise-only 500 Hz logs: its residual was
@@ -110,6 +112,10 @@ class LogSignals {
   std::size_t indexAtOrBefore(double t) const { return index_.atOrBefore(log_.t, t); }
 
   static const char* name(Channel c);
+
+  /// The log with `sensors` undone: the true motion the physics replays compare with
+  /// (sensor_correction.h, where it is defined and explained).
+  LogSignals withSensorsUndone(const SensorParams& sensors) const;
 
   /// White-noise standard deviation of a channel, estimated from fourth differences of the samples
   /// (var(d4 x) = 70 sigma^2 for white noise; a smooth signal contributes ~h^4 x'''' ).

@@ -1,6 +1,8 @@
 #pragma once
 /// The chassis replay: rows 1-2 of Beregi eq 3 and eq 2 driven by the logged steering motion, by
-/// multiple shooting (replay_shooting.h), against the logged yaw rate, psi, y and a_y.
+/// multiple shooting (replay_shooting.h), against the logged yaw rate, psi, y and a_y. A log without a
+/// pose (what a vehicle bus gives: speed, steering angle, yaw rate, perhaps a_y) is replayed on the
+/// lateral dynamics alone: yaw rate and a_y compared, the lateral velocity estimated per interval.
 #include <utility>
 #include <vector>
 

@@ -55,31 +55,6 @@ SingleTrackModel replayModel(const SimConfig& config, const LogSignals& log);
 /// Sets V and dV/dt at `t` from the log into `model` when the log's speed varies (else nothing).
 void imposeLoggedSpeed(SingleTrackModel& model, const LogSignals& log, double t, std::size_t* hint);
 
-/// The true lateral velocity of G in the body frame at t from the logged motion (LogSignals::kSigma1 is
-/// -x' sin psi + y' cos psi with the logged psi): with a localisation heading bias b (config.sensors) the
-/// true heading is psi - b, which turns the logged velocity by b.
-inline double trueLateralVelocity(const LogSignals& log, const SensorParams& sensors, const LogSignals::Position& at) {
-  const double sigma1 = log.at(LogSignals::kSigma1, at);
-  if (sensors.pose_bias_psi == 0.0) return sigma1;
-  const double b = sensors.poseBiasScale(log.at(LogSignals::kX, at)) * sensors.pose_bias_psi;
-  const double psi = log.at(LogSignals::kPsi, at);
-  const double u = log.at(LogSignals::kXDot, at) * std::cos(psi) + log.at(LogSignals::kYDot, at) * std::sin(psi);
-  return sigma1 * std::cos(b) + u * std::sin(b);
-}
-/// The same at time t.
-inline double trueLateralVelocity(const LogSignals& log, const SensorParams& sensors, double t) {
-  return trueLateralVelocity(log, sensors, log.positionAt(t));
-}
-/// The true yaw rate at a position in the log (LogSignals::positionAt): the logged one less the gyro's
-/// bias (config.sensors).
-inline double trueYawRate(const LogSignals& log, const SensorParams& sensors, const LogSignals::Position& at) {
-  return log.at(LogSignals::kYawRate, at) - sensors.yaw_rate_bias;
-}
-/// The same at time t.
-inline double trueYawRate(const LogSignals& log, const SensorParams& sensors, double t) {
-  return trueYawRate(log, sensors, log.positionAt(t));
-}
-
 /// Shooting intervals [a, b) covering the segments.
 std::vector<TimeSegment> shootingIntervals(const std::vector<TimeSegment>& segments, double horizon);
 

@@ -34,7 +34,7 @@ const std::vector<std::string>& subsystemNames();
 /// Why `log` cannot feed the replay of `subsystem` ("" when it can): the columns it needs (inputs and
 /// outputs) that are absent, or present in unknown units.
 ///   tracker  x, y, psi, yaw_rate -> delta_des     actuator  delta_des, delta -> torque
-///   steering torque, yaw_rate, x, y, psi -> delta  chassis   delta -> yaw_rate, x, y, psi (ay if present)
+///   steering torque, yaw_rate -> delta            chassis   delta -> yaw_rate (x, y, psi, ay if present)
 std::string replayUnavailable(const std::string& subsystem, const GapLog& log);
 SubsystemReplay replaySubsystem(const std::string& name, const SimConfig& config, const LogSignals& log,
                                 const std::vector<TimeSegment>& segments, const ReplayOptions& options = {});

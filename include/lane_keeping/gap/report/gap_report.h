@@ -69,6 +69,9 @@ struct RankedEffect {
   /// (closed_loop_checks.h), or the logs cannot drive a closed loop. closed_loop_bounded is then true
   /// (nothing contradicts the fit).
   bool closed_loop_checked = true;
+
+  /// "sensor_offset (yaw_rate)", or the bare name for an effect with one form.
+  std::string label() const { return form.empty() ? effect : effect + " (" + form + ")"; }
 };
 
 /// A candidate that explains part of the gap and leaves structure beyond the noise (the verdict is then
@@ -82,6 +85,21 @@ struct PartialExplanation {
   double input_correlation_p = 1.0;  ///< ... of its residual's correlation with the subsystem's input
 };
 
+/// One of the effects a verdict names: a real car has several at once (a sensor's offset and a road's
+/// bank; forward_selection.h). The first is the verdict's `effect`; each further one was fitted on top of
+/// those before it and earned its parameters by its own held-out evidence.
+struct VerdictEffect {
+  std::string effect;                          ///< one of candidateEffectNames()
+  std::string form;                            ///< its channel (sensor errors) or placement ("" for one form)
+  std::map<std::string, double> params;        ///< fitted parameters, SI units
+  std::map<std::string, double> param_sigma;   ///< their 1-sigma uncertainty
+  std::map<std::string, std::string> config;   ///< the config overlay that adds it ("key" -> "value")
+  double share = 0.0;       ///< its share of the held-out gap: (gap before it - gap with it) / gap_before
+  double gap_after = 0.0;   ///< held-out gap with it and every effect before it
+  double evidence = 0.0;    ///< its held-out evidence over the effects before it
+  bool sensor = false;      ///< a sensor or data error, not physics
+};
+
 struct GapVerdict {
   std::string effect;       ///< winning effect, or "unexplained"
   std::string form;         ///< where the winning effect sits, for effects with several placements
@@ -92,11 +110,18 @@ struct GapVerdict {
   std::string reason;       ///< one sentence: why this verdict
   std::vector<std::string> confusable_with;  ///< effects the data cannot tell apart from the winner
   PartialExplanation partial;  ///< set when the best candidate explains only part of the gap
+  /// Every effect named, the leading one (`effect`) first; empty when `unexplained`.
+  std::vector<VerdictEffect> effects;
+  double combined_gap_after = 0.0;  ///< held-out gap with all of `effects` (= gap_after with one)
+  double combined_shrink = 0.0;     ///< 1 - combined_gap_after / gap_before
 };
 
 /// The calibrated decision "the nominal model misses something" (noise_null.h): the total excess of the
 /// nominal replays against the same statistic of the noise-only null draws.
 struct DetectionTest {
+  /// Whether noise-only draws ran: without them there is no calibrated test (report.json: no p-value,
+  /// no "detected"; the diagnosis goes on only where the net gap reaches detection_gap).
+  bool tested = true;
   double value = 0.0;        ///< sum over subsystems of excess^2
   double p_value = 1.0;      ///< Monte Carlo p-value among the draws
   double null_median = 0.0, null_max = 0.0;  ///< of the draws
@@ -159,6 +184,9 @@ struct GapReport {
   std::vector<std::string> notes;
   std::vector<SkippedSubsystem> skipped_subsystems;  ///< replays the logs cannot feed
   std::vector<UntestableEffect> not_testable;        ///< candidates acting only on skipped subsystems
+  /// Candidates not fitted because they change only subsystems whose replays match the logs to within the
+  /// noise-only draws (or because there is no gap at all): they cannot explain what is there.
+  std::vector<UntestableEffect> not_fitted;
   GapSplit split;
   GapDetection detection;
   GapWhere where;

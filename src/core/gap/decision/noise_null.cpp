@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/parallel_for.h"
 #include "lane_keeping/gap/evaluation/evaluation.h"
+#include "lane_keeping/gap/evaluation/input_driven_reference.h"
 #include "lane_keeping/gap/evaluation/noise_reference.h"
 
 namespace lane_keeping {
@@ -22,8 +24,12 @@ struct NominalReference {
 };
 using NominalReferences = std::map<const LogSignals*, NominalReference>;
 
-/// The nominal references of every distinct log of the data sets, on up to `threads` threads.
-NominalReferences nominalReferences(const std::vector<Dataset>& train, const std::vector<Dataset>& held, int threads) {
+/// The nominal references of every distinct log of the data sets, on up to `threads` threads: the
+/// nominal closed loop, or where the logs feed the chassis replay alone (a real car's log without the
+/// controllers' signals, a vehicle bus's), the nominal chassis driven by each log's own steering
+/// (input_driven_reference.h).
+NominalReferences nominalReferences(const std::vector<Dataset>& train, const std::vector<Dataset>& held, int threads,
+                                    bool input_driven) {
   std::vector<const Dataset*> distinct;
   NominalReferences out;
   for (const auto* sets : {&held, &train}) {
@@ -34,7 +40,8 @@ NominalReferences nominalReferences(const std::vector<Dataset>& train, const std
   parallelFor(distinct.size(), threads, [&](std::size_t k) {
     NominalReference& r = out.at(distinct[k]->log.get());  // the map's nodes are not moved: one per thread
     try {
-      r.log = nominalReferenceLog(*distinct[k]->config, *distinct[k]->log);
+      r.log = input_driven ? inputDrivenReferenceLog(*distinct[k]->config, *distinct[k]->log)
+                           : nominalReferenceLog(*distinct[k]->config, *distinct[k]->log);
     } catch (const LaneKeepingError& e) {
       r.error = e.what();
     }
@@ -108,7 +115,9 @@ NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset
     std::string note;
   };
   std::vector<Result> results(static_cast<std::size_t>(std::max(0, draws)));
-  const NominalReferences nominal = results.empty() ? NominalReferences{} : nominalReferences(train, held, threads);
+  const bool input_driven = subsystems.size() == 1 && subsystems.count("chassis") == 1;
+  const NominalReferences nominal =
+      results.empty() ? NominalReferences{} : nominalReferences(train, held, threads, input_driven);
   parallelFor(results.size(), threads, [&](std::size_t k) {
     const Draw draw = referenceDraw(train, held, nominal, 9001u + 1000u * static_cast<unsigned>(k));
     Result& r = results[k];
@@ -167,6 +176,8 @@ DetectionTest test(const std::map<std::string, SubsystemScore>& scores, const st
   out.p_value = monteCarloPValue(out.value, draws);
   out.null_median = quantile(draws, 0.5);
   out.null_max = draws.empty() ? 0.0 : *std::max_element(draws.begin(), draws.end());
+  out.tested = !draws.empty();
+  if (!out.tested) out.p_value = std::numeric_limits<double>::quiet_NaN();
   const bool significant = draws.empty() || out.p_value <= options.false_alarm_rate;
   out.detected = significant && gapOf(scores, {}) >= options.detection_gap;
   return out;

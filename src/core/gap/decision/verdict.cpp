@@ -24,11 +24,12 @@ std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const 
     RankedEffect r;
     r.effect = fit.effect->name;
     r.form = fit.effect->form;
+    for (const auto& f : fit.tied_forms) r.form += " or " + f;  // forms the logs cannot tell apart
     r.heldout_gap_before = gap_before;
     if (!fit.ok) {
       r.heldout_gap_after = gap_before;
       r.shrink = 0.0;
-      notes->push_back(fit.effect->name + ": " + fit.note);
+      notes->push_back(fit.effect->label() + ": " + fit.note);
     } else {
       for (std::size_t i = 0; i < fit.theta.size(); ++i) {
         r.params[fit.effect->params[i].name] = fit.theta[i];
@@ -43,9 +44,9 @@ std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const 
     r.score = fit.ok ? fit.evidence : 0.0;
     r.closed_loop_bounded = !fit.ok || fit.unbounded_on.empty();
     r.closed_loop_checked = !fit.ok || fit.loop_checked;
-    if (fit.ok && !fit.note.empty()) notes->push_back(fit.effect->name + ": " + fit.note);
-    if (fit.ok && fit.at_bound) notes->push_back(fit.effect->name + ": a fitted parameter is pinned at a bound of its range");
-    if (fit.ok && !fit.stability_note.empty()) notes->push_back(fit.effect->name + ": " + fit.stability_note);
+    if (fit.ok && !fit.note.empty()) notes->push_back(fit.effect->label() + ": " + fit.note);
+    if (fit.ok && fit.at_bound) notes->push_back(fit.effect->label() + ": a fitted parameter is pinned at a bound of its range");
+    if (fit.ok && !fit.stability_note.empty()) notes->push_back(fit.effect->label() + ": " + fit.stability_note);
     ranking.push_back(r);
   }
   std::sort(ranking.begin(), ranking.end(), [](const RankedEffect& a, const RankedEffect& b) {
@@ -58,7 +59,7 @@ std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const 
 std::set<std::string> pinnedEffects(const std::vector<CandidateFit>& fits) {
   std::set<std::string> pinned;
   for (const auto& fit : fits) {
-    if (fit.ok && fit.at_bound) pinned.insert(fit.effect->name);
+    if (fit.ok && fit.at_bound) pinned.insert(fit.effect->label());
   }
   return pinned;
 }
@@ -68,8 +69,8 @@ std::set<std::string> pinnedWithinNoise(const std::vector<RankedEffect>& ranking
   std::set<std::string> out;
   const double spread = heldSpread(null);
   for (const auto& r : ranking) {
-    if (!pinned.count(r.effect)) continue;
-    if (gap_before * gap_before - r.heldout_gap_after * r.heldout_gap_after <= spread) out.insert(r.effect);
+    if (!pinned.count(r.label())) continue;
+    if (gap_before * gap_before - r.heldout_gap_after * r.heldout_gap_after <= spread) out.insert(r.label());
   }
   return out;
 }
@@ -98,7 +99,7 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
                          const DiagnosisOptions& options) {
   const std::string where_subsystem = context.where ? context.where->subsystem : "";
   const double gap_before = context.gap_before;
-  auto changesWhere = [&](const std::string& effect) { return effectChangesSubsystem(effect, where_subsystem); };
+  auto changesWhere = [&](const RankedEffect& r) { return effectChangesSubsystem(r.effect, where_subsystem, r.form); };
   GapVerdict v;
   v.gap_before = gap_before;
   const WinnerSelection selection = selectWinner(ranking, changesWhere, context.pinned, options.min_shrink,
@@ -117,7 +118,8 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
   };
   if (!detection.heldout.detected) {
     // Not detected on held-out data. Never "nothing to explain" beside a gap in the training data.
-    unexplained(0.5 + 0.5 * std::clamp(detection.heldout.p_value, 0.0, 1.0));
+    const double p = std::isfinite(detection.heldout.p_value) ? detection.heldout.p_value : 1.0;  // NaN: not tested
+    unexplained(0.5 + 0.5 * std::clamp(p, 0.0, 1.0));
     if (detection.training.detected) {
       v.confidence = 0.5;
       reason << "the training data carry a gap that the held-out data do not confirm: training excess "
@@ -152,7 +154,7 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
              << " % of it on held-out data with evidence " << formatNumber(top->score) << " (needs "
              << formatNumber(100.0 * options.min_shrink) << " % and " << formatNumber(options.min_evidence_per_parameter)
              << " per parameter)";
-      if (context.pinned_within_noise.count(top->effect)) {
+      if (context.pinned_within_noise.count(top->label())) {
         reason << "; its fit is pinned at a bound of its range and improves the gap by less than the noise-only spread";
       }
     }
@@ -191,9 +193,10 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
       v.confidence = std::clamp(best->shrink, 0.0, 1.0) * (0.5 + 0.5 * std::clamp(margin / 0.3, 0.0, 1.0));
       if (pinned_winner) v.confidence *= 0.5;
       for (const auto& r : ranking) {
-        if (&r != best && changesWhere(r.effect) && r.closed_loop_bounded && r.shrink >= options.min_shrink &&
+        if (&r != best && changesWhere(r) && r.closed_loop_bounded && r.shrink >= options.min_shrink &&
             best->shrink - r.shrink < 0.1) {
-          v.confusable_with.push_back(r.effect);
+          // A sensor error is named with its channel: sensor_offset of the heading is not of the gyro.
+          v.confusable_with.push_back(isSensorEffect(r.effect) ? r.label() : r.effect);
         }
       }
       reason << best->effect << (best->form.empty() ? "" : " (" + best->form + ")") << " removes "
@@ -207,7 +210,15 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
       }
       const auto& known = knownLookAlikes(best->effect);
       for (const auto& c : v.confusable_with) {
-        if (std::find(known.begin(), known.end(), c) != known.end()) reason << "; " << c << " is a known look-alike";
+        const std::string name = c.substr(0, c.find(' '));
+        if (std::find(known.begin(), known.end(), name) != known.end()) reason << "; " << c << " is a known look-alike";
+      }
+      if (selection.sensor_over != nullptr) {
+        reason << "; " << selection.sensor_over->label() << " removes " << formatNumber(100.0 * selection.sensor_over->shrink)
+               << " % with held-out evidence " << formatNumber(selection.sensor_over->score) << " against "
+               << formatNumber(best->score)
+               << " of this sensor error: a physical effect must beat the sensor explanations by "
+               << formatNumber(options.min_evidence_per_parameter) << " per parameter it fits";
       }
     }
   }

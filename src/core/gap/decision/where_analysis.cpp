@@ -247,8 +247,10 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, d
                                                     : config.vehicle.speed;
       double value = 0.0;
       if (binning.name == "slip_angle") {
-        value = std::fabs(log->at(LogSignals::kDelta, t[i]) -
-                          (log->at(LogSignals::kSigma1, t[i]) + b_front * log->at(LogSignals::kYawRate, t[i])) / V);
+        // (A log without a measured lateral velocity, no pose or a course for a heading: 0, a slip from
+        // the steering and yaw rate alone.)
+        const double sigma1 = log->has(LogSignals::kSigma1) ? log->at(LogSignals::kSigma1, t[i]) : 0.0;
+        value = std::fabs(log->at(LogSignals::kDelta, t[i]) - (sigma1 + b_front * log->at(LogSignals::kYawRate, t[i])) / V);
       } else if (binning.name == "lateral_acceleration") {
         value = log->has(LogSignals::kLateralAcceleration) ? std::fabs(log->at(LogSignals::kLateralAcceleration, t[i]))
                                                            : std::fabs(V * log->at(LogSignals::kYawRate, t[i]));

@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/gap/log/sensor_correction.h"
 
 namespace lane_keeping {
 namespace diagnosis {
@@ -17,9 +18,13 @@ Evaluation evaluate(const ConfigChange& change, const std::vector<Dataset>& data
   for (std::size_t d = 0; d < data.size(); ++d) {
     const Dataset& set = data[d];
     const SimConfig config = changed(*set.config, change);
+    // The physics replays compare with the true motion, the controllers' with what their sensors told
+    // them: the log as it is (log/sensor_correction.h).
+    const std::shared_ptr<const LogSignals> truth =
+        chassis || steering ? correctedForSensors(set.log, config.sensors) : set.log;
     std::vector<std::pair<double, double>> s1;
     if (chassis || (steering && sigma1 == nullptr)) {
-      SubsystemReplay r = replayChassis(config, *set.log, set.segments, options);
+      SubsystemReplay r = replayChassis(config, *truth, set.segments, options);
       s1 = r.sigma1_estimate;
       if (chassis) {
         auto it = ev.replays.find("chassis");
@@ -37,7 +42,7 @@ Evaluation evaluate(const ConfigChange& change, const std::vector<Dataset>& data
     ev.sigma1.push_back(s1);
     for (const std::string name : {"steering", "tracker", "actuator"}) {
       if (!subsystems.count(name)) continue;
-      SubsystemReplay r = name == std::string("steering") ? replaySteering(config, *set.log, set.segments, options, &s1)
+      SubsystemReplay r = name == std::string("steering") ? replaySteering(config, *truth, set.segments, options, &s1)
                                                           : replaySubsystem(name, config, *set.log, set.segments, options);
       auto it = ev.replays.find(name);
       ev.starts[name].push_back(it == ev.replays.end() || it->second.traces.empty() ? 0 : it->second.traces[0].t.size());
@@ -74,6 +79,18 @@ Evaluation concatenated(Evaluation first, const Evaluation& second) {
   first.scores.clear();
   for (const auto& [name, replay] : first.replays) first.scores[name] = scoreReplay(replay);
   return first;
+}
+
+Evaluation overlaid(Evaluation base, const Evaluation& changed) {
+  for (const auto& [name, replay] : changed.replays) {
+    base.replays[name] = replay;
+    const auto starts = changed.starts.find(name);
+    if (starts != changed.starts.end()) base.starts[name] = starts->second;
+    const auto score = changed.scores.find(name);
+    if (score != changed.scores.end()) base.scores[name] = score->second;
+  }
+  if (changed.replays.count("chassis")) base.sigma1 = changed.sigma1;
+  return base;
 }
 
 std::set<std::string> allSubsystems() {

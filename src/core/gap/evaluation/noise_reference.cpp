@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <tuple>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/time.h"
@@ -13,18 +14,22 @@ namespace lane_keeping {
 void addSensorNoise(GapLog& g, const SensorNoise& n, unsigned seed) {
   std::mt19937 rng(seed);
   std::normal_distribution<double> unit(0.0, 1.0);
-  auto add = [&](std::vector<double>& v, double sigma) {
-    for (auto& x : v) x += sigma * unit(rng);
+  // Channels in a fixed order, one unit normal per row each, whatever their character.
+  auto add = [&](const char* column, std::vector<double>& v, double sigma) {
+    const auto it = n.character.find(column);
+    ChannelCharacter c = it != n.character.end() ? it->second : ChannelCharacter{};
+    if (it == n.character.end()) c.sigma = sigma;
+    addCharacterisedNoise(v, c, rng, unit);
   };
-  add(g.x, n.position);
-  add(g.y, n.position);
-  add(g.psi, n.heading);
-  add(g.yaw_rate, n.yaw_rate);
-  add(g.delta, n.steering);
-  add(g.delta_rate, n.steering_rate);
-  add(g.torque, n.torque);
-  add(g.ay, n.lateral_acceleration);
-  add(g.v, n.speed);
+  add("x", g.x, n.position);
+  add("y", g.y, n.position);
+  add("psi", g.psi, n.heading);
+  add("yaw_rate", g.yaw_rate, n.yaw_rate);
+  add("delta", g.delta, n.steering);
+  add("delta_rate", g.delta_rate, n.steering_rate);
+  add("torque", g.torque, n.torque);
+  add("ay", g.ay, n.lateral_acceleration);
+  add("v", g.v, n.speed);
 }
 
 SensorNoise estimatedNoise(const LogSignals& log) {
@@ -39,6 +44,19 @@ SensorNoise estimatedNoise(const LogSignals& log) {
   n.steering_rate = log.log().hasSteeringRate() ? log.noise(C::kDeltaRate) : 0.0;
   n.lateral_acceleration = log.log().hasLateralAcceleration() ? log.noise(C::kLateralAcceleration) : 0.0;
   n.speed = log.log().hasSpeed() ? log.noise(C::kSpeed) : 0.0;
+  for (auto [column, channel, white] :
+       {std::tuple<const char*, C::Channel, double>{"x", C::kX, n.position}, {"y", C::kY, n.position},
+        {"psi", C::kPsi, n.heading}, {"yaw_rate", C::kYawRate, n.yaw_rate}, {"delta", C::kDelta, n.steering},
+        {"torque", C::kTorque, n.torque}, {"ay", C::kLateralAcceleration, n.lateral_acceleration},
+        {"v", C::kSpeed, n.speed}}) {
+    if (!log.has(channel)) continue;
+    const ChannelCharacter c = estimateCharacter(log.samples(channel), white);
+    if (!c.plain()) n.character[column] = c;
+  }
+  if (log.log().hasSteeringRate()) {
+    const ChannelCharacter c = estimateCharacter(log.log().delta_rate, n.steering_rate);
+    if (!c.plain()) n.character["delta_rate"] = c;
+  }
   return n;
 }
 
@@ -70,6 +88,13 @@ GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log) {
     if (!present) column->clear();
   }
   out.unscaled = real.unscaled;
+  if (real.psi_is_course && !out.psi.empty()) {  // the log's heading is a course: heading plus body slip
+    for (std::size_t i = 0; i < out.psi.size() && i < run.rows.size(); ++i) {
+      const VehicleStateSample& s = run.rows[i].state;
+      out.psi[i] += std::atan2(s.sigma1, std::sqrt(std::max(0.0, s.speed * s.speed - s.sigma1 * s.sigma1)));
+    }
+    out.psi_is_course = true;
+  }
   return out;
 }
 

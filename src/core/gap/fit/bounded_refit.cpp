@@ -161,7 +161,7 @@ double refitBar(const std::vector<CandidateFit>& fits, double gap_before, const 
   double bar = gap_before * (1.0 - options.min_shrink);
   for (const auto& fit : fits) {
     // (A fit not checked removes less than min_shrink of the gap, closed_loop_checks.h: above the bar.)
-    if (fit.ok && fit.unbounded_on.empty() && !fit.at_bound && effectChangesSubsystem(fit.effect->name, where_subsystem) &&
+    if (fit.ok && fit.unbounded_on.empty() && !fit.at_bound && fit.effect->changes(where_subsystem) &&
         fit.evidence >= options.min_evidence_per_parameter * static_cast<double>(fit.theta.size())) {
       bar = std::min(bar, fit.heldout_after);
     }
@@ -182,13 +182,13 @@ std::vector<std::pair<std::string, double>> refitWhereTheyCouldWin(const FitCont
                                                                    std::vector<CandidateFit>* fits_out) {
   using Clock = std::chrono::steady_clock;
   std::vector<CandidateFit>& fits = *fits_out;
-  auto changesWhere = [&](const std::string& effect) { return effectChangesSubsystem(effect, where_subsystem); };
+  auto changesWhere = [&](const CandidateEffect& effect) { return effect.changes(where_subsystem); };
   const double bar = refitBar(fits, gap_before, where_subsystem, options);
   std::vector<std::size_t> refit;
   for (std::size_t i = 0; i < fits.size(); ++i) {
     const CandidateFit& fit = fits[i];
     if (!fit.ok || fit.unbounded_on.empty()) continue;
-    if (detected && changesWhere(fit.effect->name) && fit.heldout_after < bar) {
+    if (detected && changesWhere(*fit.effect) && fit.heldout_after < bar) {
       refit.push_back(i);
     } else {
       noteNotRefitted(bar, &fits[i]);

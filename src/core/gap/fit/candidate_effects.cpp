@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <sstream>
+#include <utility>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
@@ -14,29 +15,43 @@ void forBothTires(SimConfig& c, const std::function<void(TireParams&)>& f) {
   f(c.tire_rear);
 }
 
+CandidateEffect make(std::string name, std::string description, std::vector<EffectParameter> params,
+                     std::vector<std::string> subsystems, bool profile,
+                     std::function<void(const std::vector<double>&, SimConfig&)> apply, std::string form = "") {
+  CandidateEffect e;
+  e.name = std::move(name);
+  e.description = std::move(description);
+  e.params = std::move(params);
+  e.subsystems = std::move(subsystems);
+  e.profile = profile;
+  e.apply = std::move(apply);
+  e.form = std::move(form);
+  return e;
+}
+
 std::vector<CandidateEffect> buildCandidates() {
   std::vector<CandidateEffect> list;
-  list.push_back({"tire_lag",
+  list.push_back(make("tire_lag",
                   "the tires build up force over a relaxation length (first-order lag)",
                   {{"relaxation_length", "m", 0.3, 0.05, 5.0, true}},
                   {"chassis", "steering"},
                   false,
                   [](const std::vector<double>& p, SimConfig& c) {
                     forBothTires(c, [&](TireParams& t) { t.relaxation_length = p[0]; });
-                  }});
-  list.push_back({"sensing_delay",
+                  }));
+  list.push_back(make("sensing_delay",
                   "the pose reaches the path tracker later than configured",
                   {{"extra_delay", "s", 0.02, 0.0, 0.3, false}},
                   {"tracker"},
                   true,
-                  [](const std::vector<double>& p, SimConfig& c) { c.delays.pose_to_tracker += p[0]; }});
-  list.push_back({"actuation_delay",
+                  [](const std::vector<double>& p, SimConfig& c) { c.delays.pose_to_tracker += p[0]; }));
+  list.push_back(make("actuation_delay",
                   "the steering torque reaches the wheel later than configured",
                   {{"extra_delay", "s", 0.001, 0.0, 0.01, false}},
                   {"steering"},
                   true,
-                  [](const std::vector<double>& p, SimConfig& c) { c.delays.torque_to_plant += p[0]; }});
-  list.push_back({"steering_friction",
+                  [](const std::vector<double>& p, SimConfig& c) { c.delays.torque_to_plant += p[0]; }));
+  list.push_back(make("steering_friction",
                   "Coulomb and viscous friction in the steering",
                   // Log-spaced: friction levels span decades and the loss has narrow minima (stick-slip).
                   {{"coulomb", "N m", 1.0, 0.02, 200.0, true}, {"viscous", "N m s/rad", 0.1, 0.01, 100.0, true}},
@@ -46,14 +61,14 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.steering.friction_model = "tanh";
                     c.steering.coulomb_friction = p[0];
                     c.steering.viscous_friction = p[1];
-                  }});
-  list.push_back({"torque_limit",
+                  }));
+  list.push_back(make("torque_limit",
                   "the steering actuator saturates",
                   {{"limit", "N m", 100.0, 0.5, 1e5, true}},
                   {"steering"},
                   true,
-                  [](const std::vector<double>& p, SimConfig& c) { c.steering.torque_limit = p[0]; }});
-  list.push_back({"road_friction",
+                  [](const std::vector<double>& p, SimConfig& c) { c.steering.torque_limit = p[0]; }));
+  list.push_back(make("road_friction",
                   "the road offers a different friction coefficient",
                   {{"scale", "", 0.8, 0.05, 3.0, true}},
                   {"chassis", "steering"},
@@ -63,8 +78,8 @@ std::vector<CandidateEffect> buildCandidates() {
                       t.mu *= p[0];
                       t.mu0 *= p[0];
                     });
-                  }});
-  list.push_back({"cornering_stiffness",
+                  }));
+  list.push_back(make("cornering_stiffness",
                   "the tires' cornering stiffness differs (front and rear scales)",
                   {{"front_scale", "", 1.0, 0.1, 10.0, true}, {"rear_scale", "", 1.0, 0.1, 10.0, true}},
                   {"chassis", "steering"},
@@ -74,8 +89,8 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.tire_rear.lateral_stiffness *= p[1];
                     if (c.tire_front.lugre.sigma0y) *c.tire_front.lugre.sigma0y *= p[0];
                     if (c.tire_rear.lugre.sigma0y) *c.tire_rear.lugre.sigma0y *= p[1];
-                  }});
-  list.push_back({"lateral_disturbance",
+                  }));
+  list.push_back(make("lateral_disturbance",
                   "a steady lateral force and yaw moment on the body (crosswind, road bank)",
                   {{"force", "N", 0.0, -2e4, 2e4, false}, {"moment", "N m", 0.0, -2e4, 2e4, false}},
                   {"chassis", "steering"},
@@ -84,10 +99,10 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.disturbance.lateral_force += p[0];
                     c.disturbance.yaw_moment += p[1];
                   },
-                  "aerodynamic"});
+                  "aerodynamic"));
   // A banked road pushes the car like a crosswind, but it is gravity: the lateral accelerometer does
   // not sense it (the logged a_y lacks F / m), which the chassis replay's a_y shows.
-  list.push_back({"lateral_disturbance",
+  list.push_back(make("lateral_disturbance",
                   "a steady lateral force and yaw moment from a banked road (the accelerometer does not sense it)",
                   {{"force", "N", 0.0, -2e4, 2e4, false}, {"moment", "N m", 0.0, -2e4, 2e4, false}},
                   {"chassis", "steering"},
@@ -97,8 +112,8 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.disturbance.lateral_force += p[0];
                     c.disturbance.yaw_moment += p[1];
                   },
-                  "road_bank"});
-  list.push_back({"pose_bias",
+                  "road_bank"));
+  list.push_back(make("pose_bias",
                   "the localisation the tracker uses is offset",
                   {{"y", "m", 0.0, -3.0, 3.0, false}, {"psi", "rad", 0.0, -0.3, 0.3, false}},
                   {"tracker"},
@@ -107,18 +122,8 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.tracker.pose_bias_y += p[0];
                     c.tracker.pose_bias_psi += p[1];
                   },
-                  "tracker"});
-  // The localisation the tracker uses is the one the log records: the tracker replay already sees
-  // the bias (nothing to fit there); the chassis replay, started from the logged heading, integrates
-  // the biased heading into y. A y bias alone is unobservable (shifted initial y, shifted output).
-  list.push_back({"pose_bias",
-                  "the localisation (used by the tracker and recorded in the log) is offset in heading",
-                  {{"psi", "rad", 0.0, -0.3, 0.3, false}},
-                  {"chassis", "steering"},  // the steering replay takes its lateral velocity from the chassis'
-                  false,
-                  [](const std::vector<double>& p, SimConfig& c) { c.sensors.pose_bias_psi += p[0]; },
-                  "localisation"});
-  list.push_back({"steering_compliance",
+                  "tracker"));
+  list.push_back(make("steering_compliance",
                   "a torsionally compliant steering column between actuator and wheel",
                   // The column's inertia is fitted too: a nominal with a rigid column has no use for
                   // (and no knowledge of) it, and a wrong one leaves a resonance the other two cannot place.
@@ -132,11 +137,11 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.steering.column_damping = p[1];
                     c.steering.column_inertia = p[2];
                   },
-                  "wheel_sensor"});
+                  "wheel_sensor"));
   // The same column with the actuator's angle sensor on the motor side: the PID closes on the column
   // angle, which the log does not hold; the actuator replay reconstructs it from the logged torque
   // and road-wheel angle.
-  list.push_back({"steering_compliance",
+  list.push_back(make("steering_compliance",
                   "a torsionally compliant steering column, the actuator sensing the motor side",
                   {{"stiffness", "N m/rad", 5000.0, 100.0, 1e6, true},
                    {"damping", "N m s/rad", 5.0, 0.1, 100.0, true},
@@ -149,8 +154,8 @@ std::vector<CandidateEffect> buildCandidates() {
                     c.steering.column_inertia = p[2];
                     c.steering.angle_sensor = "column";
                   },
-                  "motor_sensor"});
-  list.push_back({"inertia",
+                  "motor_sensor"));
+  list.push_back(make("inertia",
                   "the car's yaw inertia and mass differ",
                   {{"yaw_scale", "", 1.0, 0.2, 5.0, true}, {"mass_scale", "", 1.0, 0.5, 2.0, true}},
                   {"chassis", "steering"},
@@ -158,7 +163,55 @@ std::vector<CandidateEffect> buildCandidates() {
                   [](const std::vector<double>& p, SimConfig& c) {
                     c.vehicle.yaw_inertia *= p[0];
                     c.vehicle.mass *= p[1];
-                  }});
+                  }));
+  // The sensor and data errors (sim/sensor_params.h). Each is one parameter on one channel, fitted like
+  // any candidate; the replays of the physics undo it on the log (log/sensor_correction.h), the
+  // controllers' replays read the log as their sensors gave it. A yaw-rate or accelerometer error
+  // changes the chassis replay only: the steering replay reads the yaw rate too (the front tire's slip,
+  // the yaw acceleration in row 3 of eq 3), but at a fraction of the steering's own terms, and leaving it
+  // out halves what these fits cost.
+  auto sensorEffect = [&](const std::string& name, const std::string& form, const std::string& description,
+                          EffectParameter param, std::vector<std::string> subsystems, bool profile,
+                          std::function<void(double, SensorParams&)> apply, const std::string& channel) {
+    CandidateEffect e = make(name, description, {std::move(param)}, std::move(subsystems), profile,
+                             [apply](const std::vector<double>& p, SimConfig& c) { apply(p[0], c.sensors); }, form);
+    e.sensor = true;
+    e.channel = channel;
+    list.push_back(std::move(e));
+  };
+  sensorEffect("sensor_offset", "yaw_rate", "the gyro reads the yaw rate with an offset (a bias)",
+               {"bias", "rad/s", 0.0, -0.05, 0.05, false}, {"chassis"}, false,
+               [](double p, SensorParams& s) { s.yaw_rate_bias += p; }, "yaw_rate");
+  sensorEffect("sensor_offset", "steering_angle",
+               "the steering-angle sensor reads with an offset (its zero, or the wheels' alignment)",
+               {"bias", "rad", 0.0, -0.05, 0.05, false}, {"chassis", "steering"}, false,
+               [](double p, SensorParams& s) { s.steering_angle_bias += p; }, "delta");
+  sensorEffect("sensor_offset", "heading",
+               "the heading the localisation reports (and the log records) is offset: a mounting offset",
+               {"bias", "rad", 0.0, -0.3, 0.3, false}, {"chassis", "steering"}, false,
+               [](double p, SensorParams& s) { s.pose_bias_psi += p; }, "psi");
+  sensorEffect("sensor_offset", "lateral_acceleration",
+               "the lateral accelerometer reads with an offset (a tilt, a crowned road's gravity)",
+               {"bias", "m/s^2", 0.0, -3.0, 3.0, false}, {"chassis"}, false,
+               [](double p, SensorParams& s) { s.lateral_acceleration_bias += p; }, "ay");
+  sensorEffect("sensor_scale", "yaw_rate", "the gyro's gain differs from 1",
+               {"scale", "", 1.0, 0.5, 2.0, true}, {"chassis"}, false,
+               [](double p, SensorParams& s) { s.yaw_rate_scale *= p; }, "yaw_rate");
+  sensorEffect("sensor_scale", "steering_angle",
+               "the steering angle is logged with another gain: a steering ratio other than the log's conversion",
+               {"scale", "", 1.0, 0.5, 2.0, true}, {"chassis", "steering"}, false,
+               [](double p, SensorParams& s) { s.steering_angle_scale *= p; }, "delta");
+  sensorEffect("sensor_latency", "yaw_rate", "the yaw rate is logged late", {"latency", "s", 0.05, 0.0, 0.5, false},
+               {"chassis"}, true, [](double p, SensorParams& s) { s.yaw_rate_latency += p; }, "yaw_rate");
+  sensorEffect("sensor_latency", "steering_angle", "the steering angle is logged late",
+               {"latency", "s", 0.02, 0.0, 0.3, false}, {"chassis", "steering"}, true,
+               [](double p, SensorParams& s) { s.steering_angle_latency += p; }, "delta");
+  sensorEffect("sensor_latency", "pose", "the pose (x, y, heading) is logged late",
+               {"latency", "s", 0.05, 0.0, 0.5, false}, {"chassis"}, true,
+               [](double p, SensorParams& s) { s.pose_latency += p; }, "psi");
+  sensorEffect("sensor_latency", "lateral_acceleration", "the lateral acceleration is logged late",
+               {"latency", "s", 0.05, 0.0, 0.5, false}, {"chassis"}, true,
+               [](double p, SensorParams& s) { s.lateral_acceleration_latency += p; }, "ay");
   return list;
 }
 
@@ -194,12 +247,21 @@ const CandidateEffect& candidateEffect(const std::string& name) {
   throw LaneKeepingError("unknown candidate effect '" + name + "'");
 }
 
-bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem) {
+bool isSensorEffect(const std::string& name) {
+  return name == "sensor_offset" || name == "sensor_scale" || name == "sensor_latency";
+}
+
+bool CandidateEffect::changes(const std::string& subsystem) const {
+  return std::find(subsystems.begin(), subsystems.end(), subsystem) != subsystems.end();
+}
+
+std::string primaryForm(const std::string& form) { return form.substr(0, form.find(" or ")); }
+
+bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem, const std::string& form) {
   candidateEffect(effect);  // throws on an unknown name
+  const std::string primary = primaryForm(form);
   for (const auto& e : candidateEffects()) {
-    if (e.name == effect && std::find(e.subsystems.begin(), e.subsystems.end(), subsystem) != e.subsystems.end()) {
-      return true;
-    }
+    if (e.name == effect && (primary.empty() || e.form == primary) && e.changes(subsystem)) return true;
   }
   return false;
 }
@@ -211,12 +273,17 @@ const std::vector<std::string>& knownLookAlikes(const std::string& effect) {
       {"steering_friction", {"torque_limit"}},
       {"torque_limit", {"steering_friction"}},
       {"road_friction", {"cornering_stiffness", "tire_lag"}},
-      {"cornering_stiffness", {"road_friction", "inertia", "tire_lag"}},
-      {"tire_lag", {"cornering_stiffness", "road_friction"}},
+      {"cornering_stiffness", {"road_friction", "inertia", "tire_lag", "sensor_scale"}},
+      {"tire_lag", {"cornering_stiffness", "road_friction", "sensor_latency"}},
       {"inertia", {"cornering_stiffness"}},
-      {"lateral_disturbance", {"pose_bias"}},
-      {"pose_bias", {"lateral_disturbance"}},
-      {"sensing_delay", {}}};
+      {"lateral_disturbance", {"sensor_offset"}},
+      {"pose_bias", {}},
+      {"sensing_delay", {}},
+      // A heading offset bends the replayed path like a side force; a steering-angle offset turns the car
+      // like one too; a steering-ratio (gain) error changes the yaw gain like the tires' stiffness does.
+      {"sensor_offset", {"lateral_disturbance"}},
+      {"sensor_scale", {"cornering_stiffness"}},
+      {"sensor_latency", {"tire_lag"}}};
   static const std::vector<std::string> none;
   const auto it = pairs.find(effect);
   return it == pairs.end() ? none : it->second;

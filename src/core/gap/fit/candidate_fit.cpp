@@ -453,6 +453,23 @@ std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::si
   return polished;
 }
 
+std::vector<double> warmStartFit(const CandidateObjective& objective, std::vector<double> theta, std::size_t coarse_stride) {
+  const auto& params = objective.effect().params;
+  if (objective.effect().profile) {
+    double loss = objective.loss(theta);
+    for (std::size_t j = 0; j < params.size(); ++j) {
+      const auto [lo, hi] = narrowedRange(params[j], theta[j]);
+      loss = lineSearch(objective, theta, j, lo, hi, search::kSecondRoundGrid, loss);
+    }
+    return theta;
+  }
+  if (coarse_stride > 1) {
+    const std::vector<Dataset> coarse = coarseFitData(objective.data(), objective.replayOptions().chassis_horizon, coarse_stride);
+    theta = polish(objective.on(coarse), theta, search::kSearchPolishSteps);
+  }
+  return polish(objective, theta, search::kFinalPolishSteps);
+}
+
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
               const DiagnosisOptions& options, CandidateFit* out, int threads) {
   CandidateFit& fit = *out;
@@ -540,6 +557,8 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
     fit.heldout_scores[n].reference = nominal_heldout.scores.at(n).reference;
   }
   fit.evidence = evidenceOf(nominal_heldout.scores, held_ev.scores);
+  fit.train_evaluation = std::make_shared<const Evaluation>(std::move(train_ev));
+  fit.heldout_evaluation = std::make_shared<const Evaluation>(std::move(held_ev));
   fit.ok = true;
 }
 
@@ -551,7 +570,16 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const FitContext& conte
   std::vector<double> theta;
   FitPhases phases(effect);
   try {
-    theta = leastSquaresFit(objective, options.coarse_fit_stride, &fit.note);
+    const std::vector<double>* start = nullptr;
+    if (context.warm_start != nullptr) {
+      const auto it = context.warm_start->find(effect.label());
+      if (it != context.warm_start->end() && it->second.size() == effect.params.size()) start = &it->second;
+    }
+    if (start != nullptr) {
+      theta = warmStartFit(objective, *start, options.coarse_fit_stride);
+    } else {
+      theta = leastSquaresFit(objective, options.coarse_fit_stride, &fit.note);
+    }
   } catch (const std::exception& e) {
     fit.note = std::string("fit failed: ") + e.what();
     return fit;

@@ -12,7 +12,7 @@ namespace lane_keeping {
 namespace diagnosis {
 
 bool checkedAsFitted(const CandidateFit& fit, const std::string& where_subsystem, double min_shrink) {
-  if (!fit.ok || !effectChangesSubsystem(fit.effect->name, where_subsystem)) return false;
+  if (!fit.ok || !fit.effect->changes(where_subsystem)) return false;
   // The shrink as rankFits computes it (fit.heldout_before is its gap_before: the same scores' gap).
   const double shrink = fit.heldout_before > 0.0 ? 1.0 - fit.heldout_after / fit.heldout_before : 0.0;
   return shrink >= min_shrink - 1e-12;
@@ -63,7 +63,7 @@ std::vector<std::size_t> checkWhatTheVerdictReads(std::vector<CandidateFit>* fit
       const CandidateFit& fit = fits[i];
       // As rankFits ranks them: a failed fit at the gap before, bounded.
       heldout_after[i] = fit.ok ? fit.heldout_after : gap_before;
-      changes_where[i] = effectChangesSubsystem(fit.effect->name, where_subsystem);
+      changes_where[i] = fit.effect->changes(where_subsystem);
       state[i] = !fit.ok || (fit.loop_checked && fit.unbounded_on.empty()) ? LoopCheck::kBounded
                  : fit.loop_checked                                      ? LoopCheck::kUnbounded
                                                                          : LoopCheck::kNotChecked;

@@ -152,6 +152,7 @@ GapLog finishLog(const RowNaming& naming, const std::vector<ColumnSpec>& specs, 
       scale = it->second.scale;
       offset = it->second.offset;
       if (it->second.unscaled) log.unscaled.insert(name);
+      if (it->second.course) log.psi_is_course = true;
     }
     if (scale == 1.0 && offset == 0.0) continue;
     for (RawRow& r : rows) r.values[p] = scale * r.values[p] + offset;
@@ -327,6 +328,7 @@ GapLog GapLog::slice(std::size_t begin, std::size_t end) const {
   out.source = source + "[" + std::to_string(begin) + ":" + std::to_string(end) + "]";
   out.unscaled = unscaled;
   out.mapping = mapping;
+  out.psi_is_course = psi_is_course;
   for (const ColumnSpec& spec : columnSpecs()) {
     const std::vector<double>& from = this->*spec.member;
     if (from.empty()) continue;  // absent optional column stays absent

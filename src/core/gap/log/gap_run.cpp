@@ -78,12 +78,15 @@ GapRun gapRun(GapLog log, const SimConfig& shared) {
 SimConfig withInitialStateFromLog(SimConfig config, const GapLog& log, double sigma1) {
   if (log.t.empty()) throw InputError(log.source + ": no samples to take an initial state from");
   InitialState& init = config.simulation.initial;
-  init.x = log.x.front();
-  init.y = log.y.front();
-  init.psi = log.psi.front();
-  init.delta = log.delta.front();
-  init.sigma2 = log.yaw_rate.front();
-  init.sigma3 = log.hasSteeringRate() ? log.delta_rate.front() : 0.0;
+  // A partial log gives what it has; the rest stays as configured (a bus log has no pose: the replays
+  // that need one are skipped, and the closed loop starts at the configured pose).
+  auto first = [](const std::vector<double>& column, double otherwise) { return column.empty() ? otherwise : column.front(); };
+  init.x = first(log.x, init.x);
+  init.y = first(log.y, init.y);
+  init.psi = first(log.psi, init.psi);
+  init.delta = first(log.delta, init.delta);
+  init.sigma2 = first(log.yaw_rate, init.sigma2);
+  init.sigma3 = first(log.delta_rate, 0.0);
   init.sigma1 = sigma1;
   return config;
 }

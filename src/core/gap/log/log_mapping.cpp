@@ -128,8 +128,16 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
               fail(key + ".unscaled", at(file, field.second), "must be true or false");
             }
           }
+          else if (f == "course") {
+            if (schema != "psi") fail(key + ".course", at(file, field.first), "applies to psi only (a heading that is the course over ground)");
+            try {
+              c.course = field.second.as<bool>();
+            } catch (const YAML::Exception&) {
+              fail(key + ".course", at(file, field.second), "must be true or false");
+            }
+          }
           else if (f == "unit" || f == "note") continue;  // documentation only
-          else fail(key + "." + f, at(file, field.first), "is not a column mapping key (column, scale, offset, unscaled, shift)");
+          else fail(key + "." + f, at(file, field.first), "is not a column mapping key (column, scale, offset, unscaled, shift, course)");
         }
       } else {
         fail(key, at(file, item.second), "must be a column name or {column: NAME, scale: A, offset: B}");

@@ -238,7 +238,9 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   if (!log_.y.empty()) values_[kYDot] = smoothed(log_.y, windows.position, 1);
   if (log_.hasLateralVelocity()) {
     values_[kSigma1] = log_.vy;  // measured (an INS, an optical sensor): not differentiated from the pose
-  } else if (pose) {
+  } else if (pose && !log_.psi_is_course) {
+    // (A course over ground is the velocity's own direction: the lateral velocity across it is 0 by
+    // definition and says nothing of the body's; it is left to the replays to estimate.)
     values_[kSigma1].resize(t.size());
     for (std::size_t i = 0; i < t.size(); ++i) {
       values_[kSigma1][i] = -values_[kXDot][i] * std::sin(log_.psi[i]) + values_[kYDot][i] * std::cos(log_.psi[i]);
@@ -251,6 +253,10 @@ LogSignals::LogSignals(GapLog log, const SmoothingWindows& windows)
   if (!log_.delta.empty()) smoothed_[kDelta] = smoothed(log_.delta, windows.steering, 0);
   if (log_.hasSteeringRate()) smoothed_[kDeltaRate] = smoothed(log_.delta_rate, windows.steering, 0);
   else smoothed_[kDeltaRate] = values_[kDeltaRate];
+  // The gyro's and the accelerometer's, for a latency undone along them (sensor_correction.h): over the
+  // pose's window, so that the carry between samples adds little noise of its own.
+  if (!log_.yaw_rate.empty()) smoothed_[kYawRate] = smoothed(log_.yaw_rate, windows.pose, 0);
+  if (!log_.ay.empty()) smoothed_[kLateralAcceleration] = smoothed(log_.ay, windows.pose, 0);
   for (Channel c : {kX, kY, kPsi, kYawRate, kDelta, kDeltaDes, kTorque, kSpeed, kLateralAcceleration}) {
     noise_[c] = noiseOf(values_[c]);
   }

@@ -17,7 +17,6 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   SubsystemReplay out;
   out.name = "chassis";
   SingleTrackModel model = replayModel(config, log);
-  const SensorParams& sensors = config.sensors;
   const double mass = config.vehicle.mass;
   const int n_full = model.stateSize();
   const int front0 = model.frontTireOffset(), front_n = model.frontTire().stateSize();
@@ -31,6 +30,14 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   if (rear0 != front0 + front_n) throw std::logic_error("replayChassis: the rear tire's states do not follow the front tire's");
   const int tire_n = front_n + rear_n;
   // Returns the position of t in the log, for the other channels read at t.
+  // A vehicle bus gives no pose (speed, steering angle, yaw rate, perhaps a_y): the chassis is then
+  // replayed on its lateral dynamics alone. x, y, psi are integrated from zero and not compared (the
+  // lateral dynamics do not depend on them on a flat road), the lateral velocity is a nuisance state of
+  // each interval with no measurement behind its prior, and yaw rate (and a_y) are compared.
+  const bool pose = log.has(C::kX) && log.has(C::kY) && log.has(C::kPsi);
+  // A heading that is the course over ground (log mapping `course: true`) is compared with the model's
+  // heading plus its body slip, and gives no lateral velocity: that is estimated, as without a pose.
+  const bool course = pose && log.log().psi_is_course;
   auto assemble = [&](double t, const Eigen::VectorXd& q) {
     imposeLoggedSpeed(model, log, t, &speed_hint);
     const LogSignals::Position here = log.positionAt(t, &hint);
@@ -65,22 +72,40 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   };
 
   const bool with_ay = log.has(C::kLateralAcceleration);
-  std::vector<ReplayTrace> traces{makeTrace("yaw_rate", log.samples(C::kYawRate)), makeTrace("psi", log.samples(C::kPsi)),
-                                  makeTrace("y", log.samples(C::kY))};
-  if (with_ay) traces.push_back(makeTrace("ay", log.samples(C::kLateralAcceleration)));
-  const std::vector<C> channels{C::kYawRate, C::kPsi, C::kY, C::kLateralAcceleration};
+  std::vector<ReplayTrace> traces{makeTrace("yaw_rate", log.samples(C::kYawRate))};
+  std::vector<C> channels{C::kYawRate};
+  // Where each output lands in a simulated row (the row holds yaw rate, psi, y, a_y, then sigma1).
+  std::vector<int> slot{0};
+  if (pose) {
+    traces.push_back(makeTrace("psi", log.samples(C::kPsi)));
+    traces.push_back(makeTrace("y", log.samples(C::kY)));
+    channels.insert(channels.end(), {C::kPsi, C::kY});
+    slot.insert(slot.end(), {1, 2});
+  }
+  if (with_ay) {
+    traces.push_back(makeTrace("ay", log.samples(C::kLateralAcceleration)));
+    channels.push_back(C::kLateralAcceleration);
+    slot.push_back(3);
+  }
   const int outputs_n = static_cast<int>(traces.size());
   Eigen::VectorXd sigmas(outputs_n);
   for (int c = 0; c < outputs_n; ++c) sigmas[c] = noiseFor(log, channels[c], traces[c].scale);
-  const std::vector<double> priors{std::max(log.noise(C::kSigma1), 1e-6), noiseFor(log, C::kPsi, traces[1].scale),
-                                   noiseFor(log, C::kY, traces[2].scale)};
+  // Nuisance initial conditions and their priors: with a pose, (sigma1, psi, y) at their logged values;
+  // without, (sigma1, yaw rate), the yaw rate's its noise. Where the log does not measure sigma1 (no pose,
+  // or a course for a heading) its prior is a tenth of the speed wide: a body slip angle of 6 degrees.
+  const std::vector<int> nuisance = pose ? std::vector<int>{3, 2, 1} : std::vector<int>{3, 4};
+  const double fastest_speed = log.fastestSpeed(config.vehicle.speed);
+  const double unmeasured_sigma1 = 0.1 * std::max(1.0, fastest_speed);
+  const std::vector<double> priors =
+      pose ? std::vector<double>{course ? unmeasured_sigma1 : std::max(log.noise(C::kSigma1), 1e-6),
+                                 noiseFor(log, C::kPsi, traces[1].scale), noiseFor(log, C::kY, traces[2].scale)}
+           : std::vector<double>{unmeasured_sigma1, noiseFor(log, C::kYawRate, traces[0].scale)};
   Rk4 rk4(n);
   Eigen::VectorXd q_dot(n);
   const auto& times = log.times();
   // Fast tire dynamics (relaxation, LuGre transport ~ kappa V / L) need a shorter step.
-  const double fastest = log.fastestSpeed(config.vehicle.speed);
-  const double step = std::min({options.chassis_step, tireStep(model.frontTire(), fastest),
-                                 tireStep(model.rearTire(), fastest)});
+  const double step = std::min({options.chassis_step, tireStep(model.frontTire(), fastest_speed),
+                                 tireStep(model.rearTire(), fastest_speed)});
   for (const TimeSegment& interval : shootingIntervals(segments, options.chassis_horizon)) {
     // The chassis is slow (a few Hz): compare at most every chassis_compare_period seconds.
     std::vector<std::size_t> samples;
@@ -90,21 +115,22 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     if (samples.empty()) continue;
     const double t0 = interval.t0;
     Eigen::VectorXd q0 = Eigen::VectorXd::Zero(n);
-    // The logged pose and yaw rate are what the sensors report (config.sensors): start from the truth
-    // they imply, and report the replayed motion through the same sensors.
-    q0[0] = log.at(C::kX, t0);
-    const double bias0 = sensors.poseBiasScale(q0[0]);
-    q0[1] = log.at(C::kY, t0) - bias0 * sensors.pose_bias_y;
-    q0[2] = log.at(C::kPsi, t0) - bias0 * sensors.pose_bias_psi;
-    q0[3] = trueLateralVelocity(log, sensors, t0);
-    q0[4] = trueYawRate(log, sensors, t0);
+    // The log holds the true motion here: the sensors' errors are undone before the replay
+    // (evaluation.cpp, log/sensor_correction.h).
+    if (pose) {
+      q0[0] = log.at(C::kX, t0);
+      q0[1] = log.at(C::kY, t0);
+      q0[2] = log.at(C::kPsi, t0);
+      if (!course) q0[3] = log.at(C::kSigma1, t0);
+    }
+    q0[4] = log.at(C::kYawRate, t0);
     if (front_n + rear_n > 0) {
       // Both tires' states at t0, driven by the logged steering, yaw rate and sigma1 before it.
       Eigen::VectorXd motion = Eigen::VectorXd::Zero(n);
       const auto logged = [&](double t) {
         const LogSignals::Position here = log.positionAt(t);
-        motion[3] = trueLateralVelocity(log, sensors, here);
-        motion[4] = trueYawRate(log, sensors, here);
+        motion[3] = log.has(C::kSigma1) ? log.at(C::kSigma1, here) : 0.0;
+        motion[4] = log.at(C::kYawRate, here);
         assemble(t, motion);
       };
       const Eigen::VectorXd z = tireStatesAfterLeadIn(model, true, log.start(), t0, step, logged, full, full_dot);
@@ -116,6 +142,8 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
     for (Eigen::Index k = 0; k < rows; ++k) {
       for (int c = 0; c < outputs_n; ++c) measured(k, c) = log.samples(channels[c])[samples[k]];
     }
+    // The model's outputs at a state, in the compared order, then sigma1.
+    double row[5];
     auto simulate = [&](const Eigen::VectorXd& start, Eigen::MatrixXd& outputs) {
       Eigen::VectorXd q = start;
       double t = t0;
@@ -127,20 +155,19 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
           outputs.bottomRows(rows - k).setZero();
           return false;
         }
+        if (with_ay || course) f(t, q, q_dot);  // (last_u: the forward velocity of G at this state)
+        row[0] = q[4];
+        row[1] = course ? q[2] + std::atan2(q[3], last_u) : q[2];
+        row[2] = q[1];
+        // a_y = sigma1' + sigma2 u at this state, less what the accelerometer does not sense.
+        if (with_ay) row[3] = q_dot[3] + q[4] * last_u - model.unsensedLateralForce(full.data()) / mass;
+        for (int c = 0; c < outputs_n; ++c) outputs(k, c) = row[slot[c]];
         outputs(k, outputs_n) = q[3];  // sigma1: projected, not compared
-        const double bias = sensors.poseBiasScale(q[0]);
-        outputs(k, 0) = q[4] + sensors.yaw_rate_bias;
-        outputs(k, 1) = q[2] + bias * sensors.pose_bias_psi;
-        outputs(k, 2) = q[1] + bias * sensors.pose_bias_y;
-        if (with_ay) {
-          f(t, q, q_dot);  // a_y = sigma1' + sigma2 u at this state, less what the accelerometer does not sense
-          outputs(k, 3) = q_dot[3] + q[4] * last_u - model.unsensedLateralForce(full.data()) / mass;
-        }
       }
       return true;
     };
     Eigen::MatrixXd predicted;
-    if (!shootWithNuisance(simulate, q0, {3, 2, 1}, priors, measured, sigmas, options.estimate_initial_conditions,
+    if (!shootWithNuisance(simulate, q0, nuisance, priors, measured, sigmas, options.estimate_initial_conditions,
                            &predicted, 1)) {
       ++out.diverged_intervals;
     }

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <optional>
 
+#include "lane_keeping/gap/log/sensor_correction.h"
 #include "lane_keeping/gap/replay/replay_shooting.h"
 #include "lane_keeping/sim/closed_loop.h"
 
@@ -13,16 +15,18 @@ SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double 
                                 double log_rate) {
   const double t0 = log.start();
   InitialState& init = config.simulation.initial;
-  // The simulation starts from the true state; the log holds what the sensors report (config.sensors).
-  const SensorParams& sensors = config.sensors;
-  init.x = log.at(LogSignals::kX, t0);
-  const double bias = sensors.poseBiasScale(init.x);
-  init.y = log.at(LogSignals::kY, t0) - bias * sensors.pose_bias_y;
-  init.psi = log.at(LogSignals::kPsi, t0) - bias * sensors.pose_bias_psi;
-  init.delta = log.at(LogSignals::kDelta, t0);
-  init.sigma2 = log.at(LogSignals::kYawRate, t0) - sensors.yaw_rate_bias;
-  init.sigma3 = log.at(LogSignals::kDeltaRate, t0);
-  init.sigma1 = std::isfinite(sigma1_0) ? sigma1_0 : replay::trueLateralVelocity(log, sensors, t0);
+  // The simulation starts from the true state; the log holds what the sensors report (config.sensors),
+  // which log/sensor_correction.h undoes.
+  std::optional<LogSignals> undone;
+  if (sensorsChangeTheLog(config.sensors)) undone.emplace(log.withSensorsUndone(config.sensors));
+  const LogSignals& truth = undone ? *undone : log;
+  init.x = truth.at(LogSignals::kX, t0);
+  init.y = truth.at(LogSignals::kY, t0);
+  init.psi = truth.at(LogSignals::kPsi, t0);
+  init.delta = truth.at(LogSignals::kDelta, t0);
+  init.sigma2 = truth.at(LogSignals::kYawRate, t0);
+  init.sigma3 = truth.at(LogSignals::kDeltaRate, t0);
+  init.sigma1 = std::isfinite(sigma1_0) ? sigma1_0 : (truth.has(LogSignals::kSigma1) ? truth.at(LogSignals::kSigma1, t0) : 0.0);
   config.simulation.duration = std::min(duration, log.end() - t0);
   // The simulation's t = 0 is the log's t0; the excitation runs on the log's t plus the run's own clock
   // offset (excitation_clock.h).

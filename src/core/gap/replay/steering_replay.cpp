@@ -86,14 +86,14 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
   std::size_t s1_cursor = 0;
   auto lateralVelocity = [&](double t) {
     if (sigma1_times.size() < 2 || t < sigma1_times.front() || t > sigma1_times.back()) {
-      return trueLateralVelocity(log, config.sensors, t);
+      return log.has(C::kSigma1) ? log.at(C::kSigma1, t) : 0.0;
     }
     std::size_t j = std::min(s1_cursor, sigma1_times.size() - 2);
     while (j > 0 && sigma1_times[j] > t) --j;
     while (j + 2 < sigma1_times.size() && sigma1_times[j + 1] <= t) ++j;
     s1_cursor = j;
     const std::size_t i = j + 1;
-    if (sigma1_times[i] - sigma1_times[j] > 0.05) return trueLateralVelocity(log, config.sensors, t);  // a gap between intervals
+    if (sigma1_times[i] - sigma1_times[j] > 0.05) return log.has(C::kSigma1) ? log.at(C::kSigma1, t) : 0.0;  // a gap between intervals
     const double w = (t - sigma1_times[j]) / (sigma1_times[i] - sigma1_times[j]);
     return sigma1_values[j] + w * (sigma1_values[i] - sigma1_values[j]);
   };
@@ -122,7 +122,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
     full[kDelta] = q[0];
     full[kSigma3] = q[1];
     full[kSigma1] = lateralVelocity(t);
-    full[kSigma2] = trueYawRate(log, config.sensors, here);
+    full[kSigma2] = log.at(C::kYawRate, here);
     copyStates(q.data() + 2, carried, full.data() + steer0);
     return here;
   };

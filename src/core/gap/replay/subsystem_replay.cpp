@@ -24,8 +24,10 @@ std::string replayUnavailable(const std::string& subsystem, const GapLog& log) {
   static const std::map<std::string, std::vector<std::string>> needs{
       {"tracker", {"x", "y", "psi", "yaw_rate", "delta_des"}},
       {"actuator", {"delta_des", "delta", "torque"}},
-      {"steering", {"torque", "delta", "yaw_rate", "x", "y", "psi"}},
-      {"chassis", {"delta", "yaw_rate", "x", "y", "psi"}}};
+      // The steering replay's lateral velocity comes from the chassis replay, which needs no pose: a
+      // vehicle bus's speed, steering angle and yaw rate (and a_y) are enough (chassis_replay.h).
+      {"steering", {"torque", "delta", "yaw_rate"}},
+      {"chassis", {"delta", "yaw_rate"}}};
   const auto it = needs.find(subsystem);
   if (it == needs.end()) throw LaneKeepingError("unknown subsystem '" + subsystem + "'");
   std::vector<std::string> absent, unscaled;

@@ -3,11 +3,11 @@
 // Layout (keys in this order; every GapReport field appears):
 //   { "format": "lane_keeping.gap_report", "version": 1,
 //     "logs": [..], "heldout": [..], "logs_t0": {log: first sample [s]}, "rows_used": N, "rows_skipped": N,
-//     "notes": [..], "skipped_subsystems": [{"name", "reason"}], "not_testable": [{"effect", "reason"}],
+//     "notes": [..], "skipped_subsystems": [{"name", "reason"}], "not_testable": [{"effect", "reason"}], "not_fitted": [..],
 //     "input_checks": [{"log", "channel", "kind", "detail", "t0", "t1" (a hole's; only for holes)}],
 //     "split": { "method", "coverage": {kind: held-out share} },
-//     "detection": { "draws", "false_alarm_rate", "heldout": {"value", "p_value", "null_median", "null_max",
-//                    "detected"}, "training": {..} },
+//     "detection": { "draws", "false_alarm_rate", "heldout": {"tested", "value", "p_value", "null_median",
+//                    "null_max", "detected"}, "training": {..} }  (not tested: p_value null, no "detected"),
 //     "where":   { "subsystem", "subsystems": [{"name", "nrmse", "noise_floor", "outputs": [..]}],
 //                  "windows": [{"log", "t0", "t1", "share", "log_t0"}], "onset" (optional),
 //                  "bands": [{"f0", "f1", "share"}],
@@ -16,6 +16,8 @@
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
 //                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked"}],
 //     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..],
+//                  "effects": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {}, "share", "gap_after",
+//                               "evidence", "sensor"}], "combined_gap_after", "combined_shrink",
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
 //                  (only when a candidate explains part of the gap) },
 //     "how_far": { "before", "after", "shrink", "not_run" (why, only when the closed loop was not replayed:
@@ -117,7 +119,13 @@ OrderedJson toJson(const PartialExplanation& p) {
 }
 
 OrderedJson toJson(const DetectionTest& d) {
-  return OrderedJson{{"value", number(d.value)},          {"p_value", number(d.p_value)},
+  // Without noise-only draws there is no test: no p-value and no "detected", but "tested": false.
+  if (!d.tested) {
+    return OrderedJson{{"tested", false}, {"value", number(d.value)}, {"p_value", nullptr},
+                       {"null_median", nullptr}, {"null_max", nullptr}};
+  }
+  return OrderedJson{{"tested", true},
+                     {"value", number(d.value)},          {"p_value", number(d.p_value)},
                      {"null_median", number(d.null_median)}, {"null_max", number(d.null_max)},
                      {"detected", d.detected}};
 }
@@ -132,6 +140,22 @@ OrderedJson toJson(const GapVerdict& v) {
   out["shrink"] = number(v.shrink);
   out["reason"] = v.reason;
   out["confusable_with"] = v.confusable_with;
+  out["effects"] = OrderedJson::array();
+  for (const VerdictEffect& e : v.effects) {
+    OrderedJson j;
+    j["effect"] = e.effect;
+    j["form"] = e.form;
+    j["params"] = numberMap(e.params);
+    j["param_sigma"] = numberMap(e.param_sigma);
+    j["config"] = e.config;
+    j["share"] = number(e.share);
+    j["gap_after"] = number(e.gap_after);
+    j["evidence"] = number(e.evidence);
+    j["sensor"] = e.sensor;
+    out["effects"].push_back(j);
+  }
+  out["combined_gap_after"] = number(v.combined_gap_after);
+  out["combined_shrink"] = number(v.combined_shrink);
   if (!v.partial.effect.empty()) out["partial"] = toJson(v.partial);
   return out;
 }
@@ -171,6 +195,8 @@ OrderedJson toJson(const GapReport& r) {
     }
     out["input_checks"].push_back(entry);
   }
+  out["not_fitted"] = OrderedJson::array();
+  for (const auto& e : r.not_fitted) out["not_fitted"].push_back({{"effect", e.effect}, {"reason", e.reason}});
   out["split"] = OrderedJson{{"method", r.split.method}, {"coverage", numberMap(r.split.coverage)}};
   out["detection"] = OrderedJson{{"draws", r.detection.draws},
                                  {"false_alarm_rate", number(r.detection.false_alarm_rate)},
@@ -292,7 +318,8 @@ const std::vector<std::string>& candidateEffectNames() {
   static const std::vector<std::string> names{
       "tire_lag",         "sensing_delay",     "actuation_delay",     "steering_friction",
       "torque_limit",     "road_friction",     "cornering_stiffness", "lateral_disturbance",
-      "pose_bias",        "steering_compliance", "inertia"};
+      "pose_bias",        "steering_compliance", "inertia",             "sensor_offset",
+      "sensor_scale",     "sensor_latency"};
   return names;
 }
 
@@ -361,6 +388,12 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "t1", &c.t1);
     rep.input_checks.push_back(c);
   });
+  r.forEach(j, root, "not_fitted", false, [&](const Json& e, const std::string& p) {
+    UntestableEffect u;
+    r.get(e, p, "effect", &u.effect, true);
+    r.get(e, p, "reason", &u.reason);
+    rep.not_fitted.push_back(u);
+  });
   if (const Json* s = r.member(j, root, "split", false)) {
     r.get(*s, root + ".split", "method", &rep.split.method);
     r.get(*s, root + ".split", "coverage", &rep.split.coverage);
@@ -375,6 +408,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
                              std::pair<const char*, DetectionTest*>{"training", &rep.detection.training}}) {
       if (const Json* e = r.member(*d, dp, key, false)) {
         const std::string ep = dp + "." + key;
+        r.get(*e, ep, "tested", &test->tested);  // absent in older reports: tested
         r.get(*e, ep, "value", &test->value);
         r.get(*e, ep, "p_value", &test->p_value);
         r.get(*e, ep, "null_median", &test->null_median);
@@ -451,6 +485,21 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   r.get(v, vp, "shrink", &rep.verdict.shrink, true);
   r.get(v, vp, "reason", &rep.verdict.reason);
   r.get(v, vp, "confusable_with", &rep.verdict.confusable_with);
+  r.forEach(v, vp, "effects", false, [&](const Json& e, const std::string& p) {  // absent in older reports
+    VerdictEffect s;
+    r.get(e, p, "effect", &s.effect, true);
+    r.get(e, p, "form", &s.form);
+    r.get(e, p, "params", &s.params);
+    r.get(e, p, "param_sigma", &s.param_sigma);
+    r.get(e, p, "config", &s.config);
+    r.get(e, p, "share", &s.share);
+    r.get(e, p, "gap_after", &s.gap_after);
+    r.get(e, p, "evidence", &s.evidence);
+    r.get(e, p, "sensor", &s.sensor);
+    rep.verdict.effects.push_back(s);
+  });
+  r.get(v, vp, "combined_gap_after", &rep.verdict.combined_gap_after);
+  r.get(v, vp, "combined_shrink", &rep.verdict.combined_shrink);
   if (const Json* partial = r.member(v, vp, "partial", false)) {
     const std::string pp = vp + ".partial";
     PartialExplanation& px = rep.verdict.partial;

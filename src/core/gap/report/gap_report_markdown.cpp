@@ -120,6 +120,20 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
         << ", p = " << num(d.training.p_value, "%.3f") << (d.training.detected ? " (a gap)" : " (within noise)")
         << "; draws: median " << num(d.heldout.null_median, "%.3g") << ", largest " << num(d.heldout.null_max, "%.3g")
         << "\n";
+  } else {
+    out << "- is there a gap? not tested: no noise-only draw could run (see the notes); the diagnosis went on "
+           "where the held-out gap reached the detection threshold\n";
+  }
+  if (v.effects.size() > 1) {
+    out << "- effects named (each fitted on top of those before it, its share of the held-out gap):\n";
+    for (const VerdictEffect& e : v.effects) {
+      out << "  - " << e.effect << (e.form.empty() ? "" : " (" + e.form + ")") << (e.sensor ? " [sensor error]" : "")
+          << ": " << percent(e.share);
+      for (const auto& [name, value] : e.params) out << ", " << name << " " << num(value, "%.4g");
+      out << "\n";
+    }
+    out << "  - together: held-out gap " << num(v.gap_before) << " → " << num(v.combined_gap_after) << " (shrink "
+        << percent(v.combined_shrink) << ")\n";
   }
   if (!v.partial.effect.empty()) {
     out << "- partial explanation: " << v.partial.effect << (v.partial.form.empty() ? "" : " (" + v.partial.form + ")")
@@ -135,6 +149,11 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
     std::vector<std::string> names;
     for (const auto& e : r.not_testable) names.push_back(e.effect + " (" + e.reason + ")");
     out << "- not testable on these logs (not rejected): " << join(names, "; ") << "\n";
+  }
+  if (!r.not_fitted.empty()) {
+    std::vector<std::string> names;
+    for (const auto& e : r.not_fitted) names.push_back(e.effect);
+    out << "- not fitted (" << r.not_fitted.front().reason << "): " << join(names, ", ") << "\n";
   }
   if (!r.split.method.empty()) {
     std::vector<std::string> coverage;

@@ -1,0 +1,50 @@
+#pragma once
+/// How a logged channel departs from "truth plus white Gaussian noise": what a car's bus does to a
+/// signal, estimated from the log so that the noise-only null (noise_null.h) draws noise of the same
+/// kind as the log's, and the detection test is calibrated on real data.
+///
+///  * quantisation: a CAN signal is an integer times a factor (the RAV4's yaw rate moves in steps);
+///    its values lie on a grid, its differences are multiples of the step;
+///  * hold: a message slower than the log's rows, resampled by repeating it, holds each reading for
+///    several rows (runs of equal values of one length);
+///  * coloured noise: a sensor's filter, or vibration, correlates its noise from one reading to the next
+///    (AR(1), lag-one correlation `ar`).
+/// White noise at the estimated level is what a channel without any of them gets (as before: the draws
+/// of a white channel are the same to the last bit).
+///
+/// The estimate: the hold from the runs of equal consecutive values (the most common run length, if it
+/// is at least 2 and at least 60 % of the runs have it); the readings (one per hold); the step from the
+/// smallest non-zero difference between readings, kept if at least 90 % of the non-zero differences are
+/// within 5 % of a multiple of it; the correlation from the second differences of the readings (for an
+/// AR(1) noise of correlation rho their lag-one autocorrelation is -(4 - 3 rho + rho^2) / (2 (3 - rho)),
+/// -2/3 for white noise, and a smooth signal adds almost nothing to them), kept if |rho| >= 0.3 on a
+/// quantised or held channel (on a continuous one a fast signal, a steering loop ringing at 120 Hz in a
+/// 1 kHz log, reads as colour: such channels stay white); the level from their variance,
+/// sigma^2 (6 - 8 rho + 2 rho^2), less the step's own q^2 / 12.
+#include <random>
+#include <vector>
+
+namespace lane_keeping {
+
+struct ChannelCharacter {
+  double quantum = 0.0;  ///< step between the values the channel takes (0: continuous)
+  double offset = 0.0;   ///< the grid's offset: values are offset + k * quantum
+  int hold = 1;          ///< log rows each reading is held for (1: a new reading every row)
+  double ar = 0.0;       ///< lag-one correlation of the noise between readings (0: white)
+  double sigma = 0.0;    ///< std of the noise before quantisation
+
+  /// White noise only: the draws take the plain white-noise path.
+  bool plain() const { return quantum == 0.0 && hold == 1 && ar == 0.0; }
+};
+
+/// The character of a channel's samples (see above); `white_sigma` is its fourth-difference noise level,
+/// the level a plain channel keeps.
+ChannelCharacter estimateCharacter(const std::vector<double>& values, double white_sigma);
+
+/// `truth` with noise of character `c` added: AR(1) noise at sigma (one unit normal per row from `unit`,
+/// consumed as the white path consumes them, so a plain character adds the same values as white noise of
+/// level c.sigma), held for c.hold rows, quantised onto the grid.
+void addCharacterisedNoise(std::vector<double>& truth, const ChannelCharacter& c, std::mt19937& rng,
+                           std::normal_distribution<double>& unit);
+
+}  // namespace lane_keeping

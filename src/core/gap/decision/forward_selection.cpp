@@ -1,0 +1,221 @@
+#include "lane_keeping/gap/decision/forward_selection.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+#include <set>
+
+#include "lane_keeping/common/parallel_for.h"
+#include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/gap/decision/verdict.h"
+#include "lane_keeping/gap/decision/winner_selection.h"
+#include "lane_keeping/gap/fit/candidate_effects.h"
+#include "lane_keeping/gap/fit/candidate_forms.h"
+#include "lane_keeping/gap/fit/candidate_objective.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+namespace {
+
+/// Each data set under its run's configuration with `change` applied: the nominal of the next round.
+std::vector<Dataset> withChange(const std::vector<Dataset>& data, const ConfigChange& change) {
+  std::vector<Dataset> out;
+  for (const Dataset& set : data) {
+    out.push_back({set.log, std::make_shared<const SimConfig>(changed(*set.config, change)), set.segments});
+  }
+  return out;
+}
+
+/// The subsystem with the largest excess beyond its noise reference: where what is left lies.
+std::string largestNetExcess(const std::map<std::string, SubsystemScore>& scores) {
+  std::string where;
+  double largest = -1.0;
+  for (const auto& [name, score] : scores) {
+    const double net = netExcess(score);
+    if (net > largest) {
+      largest = net;
+      where = name;
+    }
+  }
+  return where;
+}
+
+ConfigChange composed(ConfigChange first, ConfigChange then) {
+  return [first = std::move(first), then = std::move(then)](SimConfig& c) {
+    if (first) first(c);
+    if (then) then(c);
+  };
+}
+
+}  // namespace
+
+VerdictEffect verdictEffect(const CandidateFit& fit, const SimConfig& nominal) {
+  VerdictEffect e;
+  e.effect = fit.effect->name;
+  e.form = fit.effect->form;
+  for (const auto& f : fit.tied_forms) e.form += " or " + f;
+  e.sensor = fit.effect->sensor;
+  for (std::size_t i = 0; i < fit.theta.size(); ++i) {
+    e.params[fit.effect->params[i].name] = fit.theta[i];
+    if (i < fit.sigma.size()) e.param_sigma[fit.effect->params[i].name] = fit.sigma[i];
+  }
+  e.config = configDifference(nominal, fit.corrected);
+  e.evidence = fit.evidence;
+  return e;
+}
+
+ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<const CandidateEffect*>& candidates,
+                                  const std::vector<CandidateFit>& first_round, const FitContext& context,
+                                  const NoiseNull& null, double gap_before, const DiagnosisOptions& options) {
+  using Clock = std::chrono::steady_clock;
+  ForwardSelection out;
+  out.change = leader.change;
+  out.corrected = leader.corrected;
+  out.gap_after = leader.heldout_after;
+  VerdictEffect first = verdictEffect(leader, *context.nominal);
+  first.gap_after = leader.heldout_after;
+  first.share = gap_before > 0.0 ? 1.0 - leader.heldout_after / gap_before : 0.0;
+  out.effects.push_back(first);
+  std::set<std::string> named{leader.effect->sensor ? leader.effect->label() : leader.effect->name};
+  const std::map<std::string, double> reference = null.largestHeldExcess();
+  std::map<std::string, std::vector<double>> warm;
+  for (const CandidateFit& fit : first_round) {
+    if (fit.ok) warm[fit.effect->label()] = fit.theta;
+  }
+  const std::vector<double> null_totals = null.heldTotals();
+
+  const Evaluation* previous_train = context.nominal_train;
+  const Evaluation* previous_held = context.nominal_held;
+  out.added.reserve(static_cast<std::size_t>(std::max(0, options.max_effects)));  // `last` points into it
+  const CandidateFit* last = &leader;
+  std::vector<std::unique_ptr<Evaluation>> bases;  // the bases of the rounds so far, which the next build on
+  while (static_cast<int>(out.effects.size()) < options.max_effects && last->train_evaluation && last->heldout_evaluation) {
+    const Clock::time_point start = Clock::now();
+    // What the effects so far leave, on the same data and against the same noise-only draws.
+    const std::vector<Dataset> train = withChange(*context.train, out.change);
+    const std::vector<Dataset> held = withChange(*context.held, out.change);
+    // What the effects so far leave: the previous base with the last effect's own replays in place (each
+    // fit keeps the replays of the subsystems it changes), no replay of the data again.
+    Evaluation base_train = overlaid(*previous_train, *last->train_evaluation);
+    Evaluation base_held = overlaid(*previous_held, *last->heldout_evaluation);
+    setReference(base_train.scores, reference);
+    setReference(base_held.scores, reference);
+    const double left = totalExcessSquared(base_held.scores);
+    const double p = monteCarloPValue(left, null_totals);
+    // Without noise-only draws (not tested) the net gap decides, as it decided the leader.
+    const bool more = null_totals.empty() ? gapOf(base_held.scores, {}) >= options.detection_gap : p <= options.false_alarm_rate;
+    if (!more) {
+      out.notes.push_back("several effects: what " + std::to_string(out.effects.size()) +
+                          (out.effects.size() == 1 ? " effect leaves" : " effects leave") +
+                          " is within the noise-only draws (held-out total excess " + formatNumber(left) + ", p = " +
+                          formatNumber(std::round(1000.0 * p) / 1000.0) + "): no further effect sought");
+      break;
+    }
+    FitContext next = context;
+    next.nominal = &out.corrected;
+    next.train = &train;
+    next.held = &held;
+    next.nominal_train = &base_train;
+    next.nominal_held = &base_held;
+    // The combined model's closed loop is not checked here: the further effects are small beside the
+    // leader's, whose fit was (or could not be) checked.
+    next.closed_loop_checks = false;
+    next.nominal_bounds = nullptr;
+    next.where_subsystem = largestNetExcess(base_held.scores);
+    next.warm_start = &warm;
+    // Only what can change where the rest lies (a further effect is named only there), and, of what was
+    // fitted alone, only what helps the training data on top of the effects so far at its own optimum
+    // (one replay of the coarse data each, against a fit's few dozen): an effect that made them worse
+    // there was imitating the leader (on the benchmark's friction log every one of them).
+    const std::vector<Dataset> coarse = coarseFitData(train, options.replay.chassis_horizon, options.coarse_fit_stride);
+    std::map<std::set<std::string>, double> base_loss;
+    std::vector<const CandidateEffect*> round;
+    std::vector<std::string> screened_out;
+    for (const CandidateEffect* c : candidates) {
+      if (named.count(c->sensor ? c->label() : c->name) || !c->changes(next.where_subsystem)) continue;
+      const auto solo = warm.find(c->label());
+      if (solo != warm.end()) {
+        const CandidateObjective objective(*c, out.corrected, coarse, options.replay, base_train.sigma1, context.available);
+        const std::set<std::string>& subsystems = objective.subsystems();
+        if (!base_loss.count(subsystems)) {
+          const bool reuse = subsystems.count("chassis") == 0;
+          base_loss[subsystems] =
+              sumOfSquares(fitResiduals(evaluate(nullptr, coarse, subsystems, options.replay, reuse ? &base_train.sigma1 : nullptr)));
+        }
+        if (!(objective.loss(solo->second) < base_loss[subsystems])) {
+          screened_out.push_back(c->label());
+          continue;
+        }
+      }
+      round.push_back(c);
+    }
+    if (!screened_out.empty() && options.progress) {
+      options.progress(std::to_string(screened_out.size()) + " candidates do not help on top at their own optimum");
+    }
+    std::vector<CandidateFit> fits(round.size());
+    parallelFor(round.size(), options.threads, [&](std::size_t k) { fits[k] = fitCandidate(*round[k], next, options); });
+    std::vector<std::string> form_notes;
+    keepBestForms(&fits, &form_notes);
+    const double base_gap = gapOf(base_held.scores, {});
+    std::vector<std::string> rank_notes;
+    const std::vector<RankedEffect> ranking = rankFits(fits, out.corrected, base_gap, &rank_notes);
+    const std::string where = next.where_subsystem;
+    const WinnerSelection pick = selectWinner(
+        ranking, [&](const RankedEffect& r) { return effectChangesSubsystem(r.effect, where, r.form); },
+        pinnedEffects(fits), options.min_further_shrink, options.min_evidence_per_parameter);
+    out.wall_seconds.emplace_back("effect " + std::to_string(out.effects.size() + 1), std::chrono::duration<double>(Clock::now() - start).count());
+    const CandidateFit* added = nullptr;
+    if (pick.winner != nullptr && !pick.winner_pinned) {
+      for (const auto& fit : fits) {
+        if (fit.ok && fit.effect->name == pick.winner->effect && fit.effect->form == primaryForm(pick.winner->form)) {
+          added = &fit;
+        }
+      }
+    }
+    // Its share of the original gap: the gap with it, against the nominal's references; and what it
+    // removes of the total excess, against what noise alone moves it by.
+    const double gap_with = added ? gapOf(context.nominal_held->scores, added->heldout_scores) : out.gap_after;
+    const double share = gap_before > 0.0 ? (out.gap_after - gap_with) / gap_before : 0.0;
+    const double removed = added ? left - totalExcessSquared(added->heldout_scores) : 0.0;
+    const bool beyond_noise = removed > heldSpread(null);
+    if (added == nullptr || share < options.min_effect_share || !beyond_noise) {
+      std::string why = "several effects: what " + std::to_string(out.effects.size()) +
+                        (out.effects.size() == 1 ? " effect leaves" : " effects leave") + " (held-out gap " +
+                        formatNumber(base_gap) + ", mostly in the " + where + " subsystem; p = " +
+                        formatNumber(std::round(1000.0 * p) / 1000.0) + " among the noise-only draws) ";
+      if (added == nullptr) {
+        why += "no further candidate explains";
+        if (pick.top != nullptr) {
+          why += ": the best, " + pick.top->label() + ", removes " + formatNumber(std::round(1000.0 * pick.top->shrink) / 10.0) +
+                 " % of it with evidence " + formatNumber(pick.top->score);
+        }
+      } else if (!beyond_noise) {
+        why += "is reduced by " + added->effect->label() + " by less than the noise-only draws' spread";
+      } else {
+        why += "is explained by " + added->effect->label() + " only for " + formatNumber(std::round(1000.0 * share) / 10.0) +
+               " % of the gap (needs " + formatNumber(100.0 * options.min_effect_share) + " %)";
+      }
+      out.notes.push_back(why);
+      break;
+    }
+    VerdictEffect e = verdictEffect(*added, out.corrected);
+    e.gap_after = gap_with;
+    e.share = share;
+    out.effects.push_back(e);
+    out.added.push_back(*added);
+    bases.push_back(std::make_unique<Evaluation>(std::move(base_train)));
+    previous_train = bases.back().get();
+    bases.push_back(std::make_unique<Evaluation>(std::move(base_held)));
+    previous_held = bases.back().get();
+    last = &out.added.back();
+    out.change = composed(out.change, added->change);
+    out.corrected = added->corrected;
+    out.gap_after = gap_with;
+    named.insert(added->effect->sensor ? added->effect->label() : added->effect->name);
+  }
+  return out;
+}
+
+}  // namespace diagnosis
+}  // namespace lane_keeping

@@ -1,0 +1,80 @@
+// What a bus does to a signal (gap/evaluation/sensor_character.h): the step, the hold and the colour
+// estimated from a log, and noise drawn with them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <vector>
+
+#include "lane_keeping/gap/evaluation/sensor_character.h"
+#include "lane_keeping/gap/log/log_signals.h"
+
+namespace lane_keeping {
+namespace {
+
+std::vector<double> slowSignal(std::size_t n) {
+  std::vector<double> v(n);
+  for (std::size_t i = 0; i < n; ++i) v[i] = 0.05 * std::sin(0.003 * static_cast<double>(i)) + 0.02 * std::cos(0.011 * i);
+  return v;
+}
+
+TEST(SensorCharacter, AContinuousWhiteChannelIsPlain) {
+  std::vector<double> v = slowSignal(6000);
+  std::mt19937 rng(3);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  for (double& x : v) x += 0.002 * unit(rng);
+  const ChannelCharacter c = estimateCharacter(v, 0.002);
+  EXPECT_TRUE(c.plain()) << "quantum " << c.quantum << " hold " << c.hold << " ar " << c.ar;
+  EXPECT_EQ(c.sigma, 0.002);
+}
+
+TEST(SensorCharacter, StepHoldAndColourOfABusChannelAreFound) {
+  ChannelCharacter truth;
+  truth.quantum = 0.0017;  // a CAN yaw rate's factor, rad/s
+  truth.hold = 2;          // a 50 Hz message in a 100 Hz log
+  truth.ar = 0.7;
+  truth.sigma = 0.004;
+  std::vector<double> v = slowSignal(8000);
+  std::mt19937 rng(11);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  addCharacterisedNoise(v, truth, rng, unit);
+  const ChannelCharacter c = estimateCharacter(v, fourthDifferenceNoise(v));
+  EXPECT_NEAR(c.quantum, 0.0017, 1e-9);
+  EXPECT_EQ(c.hold, 2);
+  EXPECT_NEAR(c.ar, 0.7, 0.1);
+  EXPECT_NEAR(c.sigma, 0.004, 0.0008);
+}
+
+TEST(SensorCharacter, AQuantisedSlowChannelWithoutNoiseHasTheStepAndNoHold) {
+  // A slowly turning car on a straight: a coarse step, long runs of one value that are quantisation, not
+  // a hold (their lengths vary).
+  std::vector<double> v = slowSignal(6000);
+  for (double& x : v) x = 0.001 * std::round(x / 0.001);
+  const ChannelCharacter c = estimateCharacter(v, fourthDifferenceNoise(v));
+  EXPECT_NEAR(c.quantum, 0.001, 1e-9);
+  EXPECT_EQ(c.hold, 1);
+}
+
+TEST(SensorCharacter, APlainCharacterDrawsExactlyWhiteNoise) {
+  // The draws of a channel without character are what they were before characters existed, to the bit.
+  ChannelCharacter plain;
+  plain.sigma = 0.01;
+  std::vector<double> a = slowSignal(500), b = a;
+  std::mt19937 rng_a(5), rng_b(5);
+  std::normal_distribution<double> unit_a(0.0, 1.0), unit_b(0.0, 1.0);
+  addCharacterisedNoise(a, plain, rng_a, unit_a);
+  for (double& x : b) x += 0.01 * unit_b(rng_b);
+  EXPECT_EQ(a, b);
+  // And a characterised one consumes the same normals: what is drawn after it does not change.
+  ChannelCharacter bus = plain;
+  bus.quantum = 0.003;
+  bus.hold = 3;
+  std::vector<double> c = slowSignal(500);
+  std::mt19937 rng_c(5);
+  std::normal_distribution<double> unit_c(0.0, 1.0);
+  addCharacterisedNoise(c, bus, rng_c, unit_c);
+  EXPECT_EQ(unit_c(rng_c), unit_a(rng_a));
+}
+
+}  // namespace
+}  // namespace lane_keeping
