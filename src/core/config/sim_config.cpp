@@ -64,8 +64,8 @@ std::vector<ConfigProblem> SimConfig::problems() const {
                         "= column needs a compliant column (steering.column_stiffness > 0): with a rigid one the "
                         "motor side is the road wheel"});
   }
-  checkDistributedTireStep(tire_front, "tire.front.", vehicle.speed, simulation.step, problems);
-  checkDistributedTireStep(tire_rear, "tire.rear.", vehicle.speed, simulation.step, problems);
+  checkDistributedTireStep(tire_front, "tire.front.", vehicle.fastestSpeed(), simulation.step, problems);
+  checkDistributedTireStep(tire_rear, "tire.rear.", vehicle.fastestSpeed(), simulation.step, problems);
   return problems;
 }
 
