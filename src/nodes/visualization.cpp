@@ -84,7 +84,7 @@ LaneVisualizer::LaneVisualizer(ros::NodeHandle& nh, const SimConfig& config, con
 
 void LaneVisualizer::publishLane() {
   const double x0 = config_.simulation.initial.x - 20.0;
-  const double x1 = config_.simulation.initial.x + config_.vehicle.speed * config_.simulation.duration + 50.0;
+  const double x1 = config_.simulation.initial.x + config_.vehicle.fastestSpeed() * config_.simulation.duration + 50.0;
   const double spacing = std::max(0.5, (x1 - x0) / kMaxLanePoints);
   nav_msgs::Path center;
   center.header.frame_id = frames::kMap;

@@ -11,12 +11,15 @@
 /// Input: the steering torque command M_S [N m] (through the steering system of steering_params.h,
 /// which is Beregi's rigid, frictionless f3 = M_F + M_S unless configured otherwise). The speed V of the front axle along its wheel is held
 /// constant by the non-holonomic constraint (eq 1); the traction force that does so is the
-/// constraint force and does not appear.
+/// constraint force and does not appear. V may also vary: along the road (vehicle.speed_variation), in
+/// time (vehicle.speed_profile, which the runner imposes at each evaluation's time: followSpeedProfile),
+/// or as logged (setSpeed); a varying V adds the rheonomic terms of bodyForces.
 ///
 /// Eqs 3-5 agree term by term with an independent Gibbs-Appell derivation (docs/findings.md).
 /// Eq 8 (front) divides the contact-patch term a (sigma2 + sigma3) by V cos(delta); the kinematics
 /// of the leading point give V. We keep the printed form (it differs only at second order in delta).
 #include <cmath>
+#include <memory>
 #include <vector>
 
 #include <Eigen/Core>
@@ -25,6 +28,7 @@
 #include "lane_keeping/common/sin_cos.h"
 #include "lane_keeping/sim/simulation_params.h"
 #include "lane_keeping/tire/tire.h"
+#include "lane_keeping/vehicle/speed_profile.h"
 #include "lane_keeping/vehicle/steering_params.h"
 #include "lane_keeping/vehicle/vehicle_params.h"
 
@@ -114,6 +118,17 @@ class SingleTrackModel {
     p_.speed = V;
     inv_V_ = 1.0 / V;
     imposed_V_dot_ = V_dot;
+  }
+
+  /// vehicle.speed_profile is set: V follows it in time, imposed by whoever knows the time
+  /// (followSpeedProfile: the plant at each RK4 stage). Until then V is the profile's first speed.
+  bool followsSpeedProfile() const { return speed_profile_ != nullptr; }
+  /// Imposes V and dV/dt of vehicle.speed_profile at time t [s] from the run's start (setSpeed); nothing
+  /// without a profile.
+  void followSpeedProfile(double t) {
+    if (!speed_profile_) return;
+    const SpeedProfile::Sample s = speed_profile_->at(t);
+    setSpeed(s.speed, s.rate);
   }
 
   /// Eq 2: x_dot[kX], x_dot[kY], x_dot[kPsi], x_dot[kDelta].
@@ -353,6 +368,7 @@ class SingleTrackModel {
   double inv_JF_;  ///< 1 / J_F
   double speed_k_; ///< 2 pi / speed_wavelength
   double imposed_V_dot_ = 0.0;  ///< [m/s^2] dV/dt imposed by setSpeed (0: none)
+  std::shared_ptr<const SpeedProfile> speed_profile_;  ///< vehicle.speed_profile (null: none); shared by copies
   int front_offset_, rear_offset_, state_size_;  ///< state layout, fixed at construction
   double front_half_length_, rear_half_length_;  ///< a of eq 8's leading points (the tires' contactHalfLength())
 };

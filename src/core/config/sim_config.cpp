@@ -111,8 +111,8 @@ std::vector<ConfigProblem> SimConfig::problems() const {
                         "motor side is the road wheel"});
   }
   checkLaneAgainstCar(path, vehicle, simulation.divergence, problems);
-  checkDistributedTireStep(tire_front, "tire.front.", vehicle.speed, simulation.step, problems);
-  checkDistributedTireStep(tire_rear, "tire.rear.", vehicle.speed, simulation.step, problems);
+  checkDistributedTireStep(tire_front, "tire.front.", vehicle.fastestSpeed(), simulation.step, problems);
+  checkDistributedTireStep(tire_rear, "tire.rear.", vehicle.fastestSpeed(), simulation.step, problems);
   return problems;
 }
 

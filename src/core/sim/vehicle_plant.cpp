@@ -20,6 +20,7 @@ VehiclePlant::VehiclePlant(SingleTrackModel model, const InitialState& initial, 
 }
 
 void VehiclePlant::refresh(double torque) {
+  model_.followSpeedProfile(nanosecondsToSeconds(t_));  // (nothing without vehicle.speed_profile)
   model_.derivative(x_.data(), torque, x_dot_at_sample_.data(), &outputs_);
   sample_torque_ = torque;
   if (!sensors_.passThrough()) {
@@ -64,7 +65,13 @@ void VehiclePlant::step() {
     u1 = torque_line_.at(t_ + h_).torque;
   }
   const double inputs[4] = {u0, um, um, u1};
+  // A speed profile in time (vehicle.speed_profile) gives V and dV/dt at each stage's time, as the torque
+  // line gives the torque: the plant is the one that knows the time.
+  const bool profiled = model_.followsSpeedProfile();
+  const double times[4] = {nanosecondsToSeconds(t_), nanosecondsToSeconds(t_ + half), nanosecondsToSeconds(t_ + half),
+                           nanosecondsToSeconds(t_ + h_)};
   auto f = [&](int stage, const Eigen::VectorXd& x, Eigen::VectorXd& x_dot) {
+    if (profiled) model_.followSpeedProfile(times[stage]);
     model_.derivative(x.data(), inputs[stage], x_dot.data());
   };
   // f(x_, u0) is already known when the torque at t equals the one the sample was refreshed with.

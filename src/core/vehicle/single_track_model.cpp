@@ -24,7 +24,12 @@ SingleTrackModel::SingleTrackModel(const VehicleParams& params, const SteeringPa
       rear_offset_(front_offset_ + front_.stateSize()),
       state_size_(rear_offset_ + rear_.stateSize()),
       front_half_length_(front_.contactHalfLength()),
-      rear_half_length_(rear_.contactHalfLength()) {}
+      rear_half_length_(rear_.contactHalfLength()) {
+  if (!params.speed_profile.empty()) {
+    speed_profile_ = std::make_shared<const SpeedProfile>(params.speed_profile.points());
+    followSpeedProfile(0.0);
+  }
+}
 
 Eigen::VectorXd SingleTrackModel::initialState(const InitialState& initial) const {
   Eigen::VectorXd x = Eigen::VectorXd::Zero(stateSize());
