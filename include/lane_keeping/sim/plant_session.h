@@ -10,6 +10,7 @@
 /// which may arrive after the plant has passed t (over ROS they always may), so rows wait in a
 /// queue until their inputs are in; the queue keeps them in time order. The rows, the stop time
 /// and the stop reason do not depend on when the inputs arrive.
+#include <cstddef>
 #include <deque>
 #include <functional>
 #include <limits>
@@ -56,6 +57,8 @@ class PlantSession {
   /// taking the plant (the in-process runner's, inlined: it runs after every step).
   template <typename OnSample>
   long advance(const OnSample& on_sample, Nanoseconds until = kNoLimit);
+  /// No callback.
+  long advance(std::nullptr_t, Nanoseconds until = kNoLimit) { return advance(SampleCallback(), until); }
 
   /// Steering torque M_S stamped `stamp` (the actuator's output); throws InputError if not newer than the last.
   void pushTorque(Nanoseconds stamp, double torque) {
