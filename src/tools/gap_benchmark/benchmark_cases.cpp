@@ -217,11 +217,12 @@ std::vector<BenchmarkCase> independentCases() {
         {"steering.friction_model=lugre", "steering.coulomb_friction=" + pick(2.0, 5.0),
          "steering.breakaway_friction=" + pick(3.0, 7.0), "steering.friction_velocity=0.02", "steering.friction_stiffness=2e4"},
         {"actuator.p=2000"}, 0.0, 1.5);
-    // Out of the list, on the sensors: a localisation latency, a yaw-rate sensor bias.
+    // On the sensors: a localisation latency, a yaw-rate sensor bias (out of the list until the sensor
+    // candidates came: sensor_latency of the pose, sensor_offset of the gyro; the ids keep their names).
     for (const std::string m : {"bend", "lane_change"}) {
-      add("localisation_latency-" + size + "-" + m, "out_of_list", "localisation_latency", size, m,
+      add("localisation_latency-" + size + "-" + m, "in_list", "sensor_latency", size, m,
           {"sensors.pose_latency=" + pick(0.04, 0.1)}, {});
-      add("yaw_rate_bias-" + size + "-" + m, "out_of_list", "yaw_rate_bias", size, m,
+      add("yaw_rate_bias-" + size + "-" + m, "in_list", "sensor_offset", size, m,
           {"sensors.yaw_rate_bias=" + pick(0.003, 0.008)}, {});
     }
   }
@@ -260,7 +261,7 @@ std::vector<BenchmarkCase> independentCases() {
   pair("cornering_stiffness-pair-sinusoid-lane_change", "in_list", "cornering_stiffness", "sinusoid",
        {"tire.front.lateral_stiffness=1.4e6", "tire.rear.lateral_stiffness=1.4e6"}, {}, "lane_change",
        {"simulation.initial.y=-0.5"});
-  pair("yaw_rate_bias-pair-bend-lane_change", "out_of_list", "yaw_rate_bias", "bend", {"sensors.yaw_rate_bias=0.006"},
+  pair("yaw_rate_bias-pair-bend-lane_change", "in_list", "sensor_offset", "bend", {"sensors.yaw_rate_bias=0.006"},
        {}, "lane_change", {"simulation.duration=15"});
   pair("none-pair-1-lane_change-bend", "none", "none", "lane_change", {}, {"actuator.p=1250"}, "bend",
        {"simulation.initial.y=1.5", "simulation.duration=15"});

@@ -17,6 +17,10 @@
 namespace lane_keeping {
 namespace diagnosis {
 
+/// A figure in a sentence of the report for a reader: four significant digits (formatNumber keeps the
+/// round-trip digits configuration values need; "73.22625598146429 %" is not for reading).
+std::string briefNumber(double x);
+
 /// The fits as ranked effects, best first (bounded fits before unbounded ones, then by held-out gap),
 /// with parameters, uncertainties and the config overlay each adds to `nominal`. Notes on failed fits,
 /// parameters pinned at a bound and closed loops that leave the logged bounds go to `notes`, in fit order.

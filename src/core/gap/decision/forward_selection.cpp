@@ -108,7 +108,7 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
     if (!more) {
       out.notes.push_back("several effects: what " + std::to_string(out.effects.size()) +
                           (out.effects.size() == 1 ? " effect leaves" : " effects leave") +
-                          " is within the noise-only draws (held-out total excess " + formatNumber(left) + ", p = " +
+                          " is within the noise-only draws (held-out total excess " + briefNumber(left) + ", p = " +
                           formatNumber(std::round(1000.0 * p) / 1000.0) + "): no further effect sought");
       break;
     }
@@ -182,13 +182,13 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
     if (added == nullptr || share < options.min_effect_share || !beyond_noise) {
       std::string why = "several effects: what " + std::to_string(out.effects.size()) +
                         (out.effects.size() == 1 ? " effect leaves" : " effects leave") + " (held-out gap " +
-                        formatNumber(base_gap) + ", mostly in the " + where + " subsystem; p = " +
+                        briefNumber(base_gap) + ", mostly in the " + where + " subsystem; p = " +
                         formatNumber(std::round(1000.0 * p) / 1000.0) + " among the noise-only draws) ";
       if (added == nullptr) {
         why += "no further candidate explains";
         if (pick.top != nullptr) {
           why += ": the best, " + pick.top->label() + ", removes " + formatNumber(std::round(1000.0 * pick.top->shrink) / 10.0) +
-                 " % of it with evidence " + formatNumber(pick.top->score);
+                 " % of it with evidence " + briefNumber(pick.top->score);
         }
       } else if (!beyond_noise) {
         why += "is reduced by " + added->effect->label() + " by less than the noise-only draws' spread";

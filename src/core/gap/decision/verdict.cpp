@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <sstream>
 
@@ -16,6 +17,12 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
+
+std::string briefNumber(double x) {
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.4g", x);
+  return text;
+}
 
 std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const SimConfig& nominal, double gap_before,
                                    std::vector<std::string>* notes) {
@@ -123,36 +130,36 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
     if (detection.training.detected) {
       v.confidence = 0.5;
       reason << "the training data carry a gap that the held-out data do not confirm: training excess "
-             << formatNumber(detection.training.value) << " (" << pValue(detection.training, detection.draws)
+             << briefNumber(detection.training.value) << " (" << pValue(detection.training, detection.draws)
              << ")";
       if (const SubsystemGap* s = subsystemGap(context.where, where_subsystem)) {
-        reason << ", mostly in the " << where_subsystem << " subsystem (nrmse " << formatNumber(s->nrmse)
-               << " against a noise floor of " << formatNumber(s->noise_floor) << " over all data)";
+        reason << ", mostly in the " << where_subsystem << " subsystem (nrmse " << briefNumber(s->nrmse)
+               << " against a noise floor of " << briefNumber(s->noise_floor) << " over all data)";
       }
-      reason << "; held-out excess " << formatNumber(detection.heldout.value) << " ("
-             << pValue(detection.heldout, detection.draws) << ", net gap " << formatNumber(gap_before)
+      reason << "; held-out excess " << briefNumber(detection.heldout.value) << " ("
+             << pValue(detection.heldout, detection.draws) << ", net gap " << briefNumber(gap_before)
              << "). The effect shows in a part of the run the held-out data do not cover, or the training data "
                 "hold a rare noise draw: not diagnosed";
     } else if (detection.draws > 0) {
       reason << "the nominal model matches the held-out and the training data to within the noise-only spread "
                 "(held-out "
              << pValue(detection.heldout, detection.draws) << ", training " << pValue(detection.training, detection.draws)
-             << "; net held-out gap " << formatNumber(gap_before) << "): nothing to explain";
+             << "; net held-out gap " << briefNumber(gap_before) << "): nothing to explain";
     } else {
-      reason << "the nominal model matches the held-out data to within noise (gap " << formatNumber(gap_before)
-             << " < detection threshold " << formatNumber(options.detection_gap) << "): nothing to explain";
+      reason << "the nominal model matches the held-out data to within noise (gap " << briefNumber(gap_before)
+             << " < detection threshold " << briefNumber(options.detection_gap) << "): nothing to explain";
     }
   } else if (best == nullptr) {
     const double s = top ? std::max(0.0, top->shrink) : 0.0;
     unexplained(std::clamp(1.0 - s / options.min_shrink, 0.0, 1.0) * 0.5 + 0.5);
-    reason << "a gap of " << formatNumber(gap_before) << " (mostly in the " << where_subsystem << " subsystem; "
+    reason << "a gap of " << briefNumber(gap_before) << " (mostly in the " << where_subsystem << " subsystem; "
            << pValue(detection.heldout, detection.draws) << ") that no candidate explains: ";
     if (top == nullptr) {
       reason << "no candidate changes the " << where_subsystem << " subsystem";
     } else {
-      reason << "the best candidate that changes it, " << top->effect << ", removes " << formatNumber(100.0 * s)
-             << " % of it on held-out data with evidence " << formatNumber(top->score) << " (needs "
-             << formatNumber(100.0 * options.min_shrink) << " % and " << formatNumber(options.min_evidence_per_parameter)
+      reason << "the best candidate that changes it, " << top->effect << ", removes " << briefNumber(100.0 * s)
+             << " % of it on held-out data with evidence " << briefNumber(top->score) << " (needs "
+             << briefNumber(100.0 * options.min_shrink) << " % and " << briefNumber(options.min_evidence_per_parameter)
              << " per parameter)";
       if (context.pinned_within_noise.count(top->label())) {
         reason << "; its fit is pinned at a bound of its range and improves the gap by less than the noise-only spread";
@@ -165,22 +172,22 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
       // than half of the gap: half an explanation is not a diagnosis.
       unexplained(0.5);
       v.partial = partial;
-      reason << "a gap of " << formatNumber(gap_before) << " (mostly in the " << where_subsystem
+      reason << "a gap of " << briefNumber(gap_before) << " (mostly in the " << where_subsystem
              << " subsystem) that " << best->effect << (best->form.empty() ? "" : " (" + best->form + ")")
-             << " explains only in part: it removes " << formatNumber(std::round(1000.0 * best->shrink) / 10.0)
+             << " explains only in part: it removes " << briefNumber(std::round(1000.0 * best->shrink) / 10.0)
              << " % of the held-out gap and "
-             << formatNumber(std::round(1000.0 * (best->train_gap_before > 0.0
+             << briefNumber(std::round(1000.0 * (best->train_gap_before > 0.0
                                                       ? 1.0 - best->train_gap_after / best->train_gap_before
                                                       : 0.0)) /
                              10.0)
              << " % of the training gap it was fitted to, and what it leaves is structured beyond the noise (";
       if (partial.untouched_share >= options.untouched_share) {
-        reason << formatNumber(std::round(1000.0 * partial.untouched_share) / 10.0)
+        reason << briefNumber(std::round(1000.0 * partial.untouched_share) / 10.0)
                << " % of the gap lies in subsystems it does not change";
       } else {
-        reason << "residual whiteness p = " << formatNumber(std::round(1000.0 * partial.whiteness_p) / 1000.0)
+        reason << "residual whiteness p = " << briefNumber(std::round(1000.0 * partial.whiteness_p) / 1000.0)
                << ", correlation with the input p = "
-               << formatNumber(std::round(1000.0 * partial.input_correlation_p) / 1000.0);
+               << briefNumber(std::round(1000.0 * partial.input_correlation_p) / 1000.0);
       }
       reason << "): a partial explanation, not the cause";
     } else {
@@ -200,10 +207,10 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
         }
       }
       reason << best->effect << (best->form.empty() ? "" : " (" + best->form + ")") << " removes "
-             << formatNumber(100.0 * best->shrink) << " % of the held-out gap (" << formatNumber(gap_before) << " -> "
-             << formatNumber(best->heldout_gap_after) << "; the gap: " << pValue(detection.heldout, detection.draws)
+             << briefNumber(100.0 * best->shrink) << " % of the held-out gap (" << briefNumber(gap_before) << " -> "
+             << briefNumber(best->heldout_gap_after) << "; the gap: " << pValue(detection.heldout, detection.draws)
              << ")";
-      if (second) reason << "; next best " << second->effect << " removes " << formatNumber(100.0 * second->shrink) << " %";
+      if (second) reason << "; next best " << second->effect << " removes " << briefNumber(100.0 * second->shrink) << " %";
       if (pinned_winner) {
         reason << "; a fitted parameter sits at a bound of its range (the effect's form differs from the candidate's, "
                   "or the data fix only a combination of its parameters): confidence halved";
@@ -214,11 +221,11 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
         if (std::find(known.begin(), known.end(), name) != known.end()) reason << "; " << c << " is a known look-alike";
       }
       if (selection.sensor_over != nullptr) {
-        reason << "; " << selection.sensor_over->label() << " removes " << formatNumber(100.0 * selection.sensor_over->shrink)
-               << " % with held-out evidence " << formatNumber(selection.sensor_over->score) << " against "
-               << formatNumber(best->score)
+        reason << "; " << selection.sensor_over->label() << " removes " << briefNumber(100.0 * selection.sensor_over->shrink)
+               << " % with held-out evidence " << briefNumber(selection.sensor_over->score) << " against "
+               << briefNumber(best->score)
                << " of this sensor error: a physical effect must beat the sensor explanations by "
-               << formatNumber(options.min_evidence_per_parameter) << " per parameter it fits";
+               << briefNumber(options.min_evidence_per_parameter) << " per parameter it fits";
       }
     }
   }

@@ -89,7 +89,10 @@ TEST(LogTable, ErrorsNameTheTableTheRowAndTheColumn) {
   t = table();
   LogMapping mapping;
   mapping.source = "car.yaml";
-  mapping.columns["torque"] = ColumnMapping{"eps_torque", 1.0, 0.0, false, "car.yaml:4"};
+  ColumnMapping torque;
+  torque.column = "eps_torque";
+  torque.location = "car.yaml:4";
+  mapping.columns["torque"] = torque;
   EXPECT_NE(error(t, mapping).find("column 'eps_torque' (mapped to torque by car.yaml:4) is not in the table"),
             std::string::npos) << error(t, mapping);
 }
