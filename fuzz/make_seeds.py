@@ -8,7 +8,11 @@ Debian's python3; the bags need the messages of a catkin build: PYTHONPATH=build
   bag_log     two small bags of the suite's topics (as test/ros/bag_log_reader_test.cpp writes them):
               with torque commands, uncompressed; without, bz2-compressed chunks
   path        waypoint lists of config/scenarios/waypoints.yaml and the RAV4 scenario, as raw doubles and as
-              points files (header, comments, ';' and whitespace separators)
+              points files (header, comments, ';' and whitespace separators, a UTF-8 BOM); the lane change and
+              sinusoid of config/scenarios, a tight and an impossible one (wavelength 1e-9)
+  options     the tools' numeric option values, good and bad (abc, 5x, +-5, 1e999, nan), and --change texts
+  log_mapping the RAV4 mapping, a mapping onto a car's own column names with time in ms, one mapping a column
+              twice, a nominal configuration with a log: section
   gap_report  report.json, written by lk_gap on a benchmark log (checked in as is), and one with only the required keys
 Each seed stays below 50 kB.
 """
@@ -134,6 +138,42 @@ def path():
         out("path", name + ".bin", b"\x00" + b"".join(struct.pack("<dd", x, y) for x, y in points))
         out("path", name + ".csv", b"\x01" + ("x,y\n# a lane\n" + "\n".join("%r,%r" % (x, y) for x, y in points) + "\n").encode())
     out("path", "separators.csv", b"\x01" + b"0 0\n10;0.5\n20\t1\n  30 , 1.5\r\n")
+    out("path", "bom.csv", b"\x01" + b"\xef\xbb\xbfx,y\n0,0\n10,0.5\n20,1\n")
+    # Lane shapes: first byte 2 (lane change: start, length, offset) or 3 (sinusoid: amplitude, wavelength,
+    # start), then three doubles.
+    shapes = {"lane_change": (2, (30.0, 60.0, 3.5)), "lane_change_tight": (2, (0.0, 5.0, 3.5)),
+              "sinusoid": (3, (1.0, 150.0, 30.0)), "sinusoid_tight": (3, (1.0, 7.0, 0.0)),
+              "sinusoid_1e-9": (3, (1.0, 1e-9, 30.0))}
+    for name, (mode, values) in shapes.items():
+        out("path", name + ".bin", bytes([mode]) + b"".join(struct.pack("<d", v) for v in values))
+
+
+def options():
+    # One value per line, its first byte picking the option (options_fuzz.cpp: 5 number options, 6 whole
+    # number options, then --change).
+    lines = ["\x00" + v for v in ["4", "0.5", "1e-3", "abc", "5x", "", "+-5", "1e999", "nan", "inf", " 7"]]
+    lines += ["\x05" + v for v in ["12", "1e3", "2.5", "0", "256", "257", "-1", "0x10", "+3"]]
+    lines += ["\x06" + v for v in ["19", "5", "18", "1000", "1001"]]
+    lines += ["\x0b" + v for v in ["10:steering.coulomb_friction=3", "0:tracker.k_y=0.15", "1e9:a=b", "-1:a=b",
+                                     "5:a b=1", "5:=1", "5:a=", "nan:a=1", " 2.5 : delays.hold = zoh "]]
+    out("options", "values", "\n".join(lines) + "\n")
+    out("options", "changes", "\x0b10:steering.coulomb_friction=3\n\x0b10:steering.coulomb_friction=3\n")
+
+
+def log_mapping():
+    mapping = read("config/vehicles/rav4_2018.yaml")
+    out("log_mapping", "rav4.yaml", mapping[mapping.index("log:"):])
+    out("log_mapping", "own_names.yaml",
+        "log:\n  time: {column: stamp_ms, unit: ms}\n  columns:\n    x: {column: east}\n    y: {column: north}\n"
+        "    psi: {column: heading}\n    yaw_rate: {column: yaw}\n    v: {column: speed}\n"
+        "    delta: {column: wheel, scale: 0.0667, offset: 0}\n    delta_des: {column: wheel_des, scale: 0.0667}\n"
+        "    torque: {column: eps, unscaled: true}\n")
+    out("log_mapping", "twice.yaml", "log:\n  columns:\n    delta: {column: x}\n    y: {column: x}\n")
+    out("log_mapping", "scales.yaml",
+        "log:\n  time: {column: t, unit: us}\n  columns:\n    delta: {column: delta, scale: 1e-300}\n"
+        "    torque: {column: torque, scale: -1e308, offset: 1e308}\n")
+    out("log_mapping", "nominal_with_log.yaml", read("config/scenarios/fig6.yaml") +
+        "log:\n  columns:\n    yaw_rate: {column: yaw_rate, scale: 0.0174533}\n")
 
 
 def gap_report():
@@ -149,5 +189,5 @@ def gap_report():
 
 
 if __name__ == "__main__":
-    for name in sys.argv[1:] or ["sim_config", "csv_log", "bag_log", "path", "gap_report"]:
+    for name in sys.argv[1:] or ["sim_config", "csv_log", "bag_log", "path", "gap_report", "options", "log_mapping"]:
         globals()[name]()

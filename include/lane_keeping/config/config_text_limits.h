@@ -5,6 +5,7 @@
 /// is the largest in use (docs/benchmarks.md) and a longer one belongs in a CSV file
 /// (`path.waypoints: lane.csv`), which is read without yaml-cpp.
 #include <cstddef>
+#include <istream>
 #include <string>
 
 namespace lane_keeping {
@@ -27,5 +28,7 @@ void checkConfigBytes(std::size_t bytes, const std::string& origin);
 /// kMaxConfigValues values in all. Streams the text through yaml-cpp's event parser, which builds no
 /// nodes, and stops at the first list over its limit. Malformed YAML is left to the parse that follows.
 void checkConfigTextSize(const std::string& yaml_text, const std::string& origin);
+/// The same scan, streamed from `in` (a file too large to read whole: the list that makes it so is named).
+void checkConfigStream(std::istream& in, const std::string& origin);
 
 }  // namespace lane_keeping

@@ -62,6 +62,16 @@ struct PathParams {
         problems.push_back({prefix + key, "", "= " + formatNumber(value) + " m is beyond 1e8 m; check the unit"});
       }
     }
+    // A shape's length divides its slope: below a millimetre (3.5e-310 m was accepted as positive) the lane
+    // is NaN even without an offset (found by fuzzing, fuzz/regressions/path/lane_change_denormal_length.bin).
+    const std::pair<const char*, double> divisors[] = {{"lane_change.length", lane_change_length},
+                                                       {"sinusoid.wavelength", sinusoid_wavelength}};
+    for (const auto& [key, value] : divisors) {
+      if (shape && std::string(key).rfind(type, 0) == 0 && std::isfinite(value) && value > 0.0 &&
+          value < kMinWaypointSpacing) {
+        problems.push_back({prefix + key, "", "= " + formatNumber(value) + " m is shorter than 0.001 m"});
+      }
+    }
     if (type != "waypoints") return;
     if (waypoints.size() < 2) {
       problems.push_back({prefix + "waypoints", "", "needs at least 2 points, got " + std::to_string(waypoints.size())});

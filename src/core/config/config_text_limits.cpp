@@ -139,6 +139,10 @@ void checkConfigTextSize(const std::string& yaml_text, const std::string& origin
   }
   if (separators < kMaxInlineListValues) return;
   std::istringstream in(yaml_text);
+  checkConfigStream(in, origin);
+}
+
+void checkConfigStream(std::istream& in, const std::string& origin) {
   SizeScan scan(origin);
   try {
     YAML::Parser parser(in);

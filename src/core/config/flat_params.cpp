@@ -29,7 +29,13 @@ void FlatParams::overlayFile(const std::string& path) {
   }
   std::error_code ec;
   const auto bytes = std::filesystem::file_size(path, ec);
-  if (!ec) checkConfigBytes(bytes, path);  // before reading it
+  if (!ec && bytes > kMaxConfigBytes) {
+    // Too large to read: the inline list that makes it so is named when there is one (a 97 MB file of 7
+    // million waypoints), else the size.
+    std::ifstream stream(path, std::ios::binary);
+    checkConfigStream(stream, path);
+    checkConfigBytes(bytes, path);
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw ConfigError(path + ": cannot open configuration file (missing or unreadable)");
   std::string text;

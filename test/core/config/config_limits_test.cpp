@@ -86,6 +86,25 @@ TEST(ConfigLimits, MillionsOfInlineWaypointsAreRefusedNamingFileLineAndKey) {
   EXPECT_EQ(errorOf({writeTemp("lk_inline_lane_ok.yaml", ok)}), "");
 }
 
+TEST(ConfigLimits, AFileTooLargeToReadNamesTheListThatMakesItSo) {
+  // 97 MB of 7 million waypoints inline ended in std::bad_alloc at 7.9 GB; 70 MB here, refused after the
+  // first 600,000 values (about 3 MB read), naming the key.
+  const std::string file = testing::TempDir() + "lk_huge_lane.yaml";
+  {
+    std::ofstream out(file, std::ios::binary);
+    out << "path:\n  type: waypoints\n  waypoints:\n";
+    std::string block;
+    for (int i = 0; i < 100000; ++i) block += "    - [" + std::to_string(i) + ", 0.5]\n";
+    while (out.tellp() < (70LL << 20)) out << block;
+  }
+  const auto start = Clock::now();
+  const std::string error = errorOf({file});
+  EXPECT_LT(secondsSince(start), 20.0);
+  EXPECT_NE(error.find(file + ":4: path.waypoints holds more than 600000 values inline"), std::string::npos)
+      << error.substr(0, 300);
+  fs::remove(file);
+}
+
 TEST(ConfigLimits, HundredThousandUnknownKeysAreReadInLinearTimeAndCounted) {
   // Each key used to scan every entry read before it: 100,000 keys took over 2 minutes, and printed
   // every problem.
@@ -114,6 +133,10 @@ TEST(ConfigLimits, ALaneTheCarCannotFollowIsRefusedAgainstItsTurningRadius) {
   EXPECT_NE(errorOf({}, {"path.type=lane_change", "path.lane_change.length=0.5"}).find("path.lane_change.length = 0.5 m"),
             std::string::npos);
   EXPECT_NE(errorOf({}, {"path.type=sinusoid", "path.sinusoid.amplitude=1e12"}).find("beyond 1e8 m"), std::string::npos);
+  // Without an offset no bend, but a length of 3.5e-310 m made the lane NaN (found by fuzzing).
+  EXPECT_NE(errorOf({}, {"path.type=lane_change", "path.lane_change.offset=0", "path.lane_change.length=3.5e-310"})
+                .find("path.lane_change.length = 3.5e-310 m is shorter than 0.001 m"),
+            std::string::npos);
   EXPECT_EQ(errorOf({}, {"path.type=sinusoid", "path.sinusoid.wavelength=7"}), "");  // tight, but a car steers it
   EXPECT_EQ(errorOf({}, {"path.type=lane_change", "path.lane_change.length=5"}), "");
 }
