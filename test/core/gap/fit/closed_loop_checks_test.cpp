@@ -158,9 +158,9 @@ TEST(ClosedLoopChecks, TheVerdictAndTheRefitsAreThoseOfCheckingEveryFit) {
     ASSERT_EQ(refitBar(lazy, c.gap_before, c.where, options), bar_full) << "case " << n;
     for (std::size_t i = 0; i < full.size(); ++i) {
       const bool refit_full = full[i].ok && !full[i].unbounded_on.empty() &&
-                              effectChangesSubsystem(full[i].effect->name, c.where) && full[i].heldout_after < bar_full;
+                              full[i].effect->changes(c.where) && full[i].heldout_after < bar_full;
       const bool refit_lazy = lazy[i].ok && !lazy[i].unbounded_on.empty() &&
-                              effectChangesSubsystem(lazy[i].effect->name, c.where) && lazy[i].heldout_after < bar_full;
+                              lazy[i].effect->changes(c.where) && lazy[i].heldout_after < bar_full;
       ASSERT_EQ(refit_lazy, refit_full) << "case " << n << ", " << full[i].effect->name;
     }
     lazy_checks += checkWhatTheVerdictReads(&lazy, c.where, c.gap_before, [&](CandidateFit* fit) {

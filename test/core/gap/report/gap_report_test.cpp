@@ -168,7 +168,9 @@ TEST(GapReportNames, CandidateEffectsAreExactlyDesignSection5) {
   const std::vector<std::string> expected{"tire_lag",          "sensing_delay",       "actuation_delay",
                                           "steering_friction", "torque_limit",        "road_friction",
                                           "cornering_stiffness", "lateral_disturbance", "pose_bias",
-                                          "steering_compliance", "inertia"};
+                                          "steering_compliance", "inertia",
+                                          // the sensor and data errors, each naming its channel as its form
+                                          "sensor_offset",     "sensor_scale",        "sensor_latency"};
   EXPECT_EQ(candidateEffectNames(), expected);
 }
 
