@@ -5,7 +5,7 @@
 # checked-in corpus never grows), with its dictionary, a time limit per input and an RSS limit.
 # Prints per target: executions, exec/s, crashes, timeouts, out-of-memory, sanitizer reports, corpus size.
 # Exit status 1 on any finding; the inputs are in build-fuzz/findings/<target>/, the logs beside them.
-# Usage: fuzz/run.sh EXECUTIONS [TARGET...]   targets: sim_config csv_log bag_log path gap_report
+# Usage: fuzz/run.sh EXECUTIONS [TARGET...]   targets: sim_config csv_log bag_log path gap_report log_mapping options
 # Environment: LK_FUZZ_SEED (libFuzzer -seed, default 1: a run is reproducible), LK_FUZZ_TIMEOUT (s per
 # input, default 10), LK_FUZZ_RSS_MB (default 2048), LK_FUZZ_MAX_TIME (s of fuzzing per target: stop at
 # EXECUTIONS or then, whichever comes first; default none).
@@ -14,7 +14,7 @@ source "$(dirname "${BASH_SOURCE[0]}")/../scripts/env.sh"
 EXECUTIONS="${1:-1000000}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(sim_config csv_log bag_log path gap_report)
+[ ${#targets[@]} -gt 0 ] || targets=(sim_config csv_log bag_log path gap_report log_mapping options)
 OUT="${LK_FUZZ_BUILD:-$REPO_ROOT/build-fuzz}"
 bash "$REPO_ROOT/fuzz/build.sh" || exit 1
 export ASAN_OPTIONS="halt_on_error=1:detect_leaks=1:allocator_may_return_null=0"
