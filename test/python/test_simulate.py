@@ -174,10 +174,11 @@ def test_a_schedule_without_lookahead_raises_schedule_error(lk):
     args = ["--set", "delays.steering_angle_to_actuator=0", "--set", "delays.desired_steering_to_actuator=0",
             "--set", "delays.torque_to_plant=0"]
     code, _, stderr = run_tool("lk_simulate", *args, "--quiet", check=False)
-    assert code == 1 and "lockstep schedule cannot advance" in stderr
+    # A configuration the loop cannot run: lk_simulate exits 2 (bad configuration, issue 48), and says so.
+    assert code == 2 and "lockstep schedule cannot advance" in stderr
     with pytest.raises(lk.ScheduleError) as error:
         lk.simulate(overrides=[a for a in args if a != "--set"])
-    assert str(error.value) == stderr[len("lk_simulate: "):].rstrip("\n")
+    assert str(error.value) == stderr[len("lk_simulate: invalid configuration: "):].rstrip("\n")
     assert isinstance(error.value, RuntimeError)
 
 

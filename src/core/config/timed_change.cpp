@@ -39,7 +39,14 @@ TimedChange parseTimedChange(const std::string& text) {
   if (end == time_text.c_str() || *end != '\0') {
     refuse(text, "", "time '" + time_text + "' is not a number of seconds; " + kForm);
   }
-  if (!std::isfinite(t) || errno == ERANGE) refuse(text, "", "time '" + time_text + "' is not a finite number of seconds");
+  if (!std::isfinite(t) || (errno == ERANGE && std::fabs(t) > 1.0)) {
+    refuse(text, "", "time '" + time_text + "' is not a finite number of seconds");
+  }
+  // A subnormal time (0x1p-1074, or 4.94066e-324 which strtod reads with ERANGE) in any spelling: refused
+  // alike, so that a change's text() reads back as itself (found by fuzz/options_fuzz.cpp).
+  if (t != 0.0 && (errno == ERANGE || std::fpclassify(t) == FP_SUBNORMAL)) {
+    refuse(text, "", "time '" + time_text + "' is too small to represent (below 2.2e-308 s); write 0 for the start");
+  }
   if (t < 0.0) refuse(text, "", "time " + formatNumber(t) + " s is before the start of the run; must be >= 0 s");
   if (t > kMaxChangeTime) {
     refuse(text, "", "time " + formatNumber(t) + " s is beyond " + formatNumber(kMaxChangeTime) + " s");

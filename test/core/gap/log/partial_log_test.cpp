@@ -148,6 +148,30 @@ TEST(PartialLog, TheDiagnosisRunsWhatTheLogFeedsAndSaysWhatItSkipped) {
   ASSERT_EQ(back.not_testable.size(), 2u);
 }
 
+TEST(PartialLog, AVehicleBusLogWithoutAnyPoseIsDiagnosedOnTheChassis) {
+  // What a vehicle bus gives: time, speed, steering angle, yaw rate, lateral acceleration; no pose, no
+  // lateral velocity (issue 46: "the log has no sigma1" ended lk_gap with exit 1). The chassis replay
+  // needs no pose (the lateral velocity is a nuisance state), and a cornering-stiffness loss is found.
+  GapLog log = chassisOnlyLog({"tire.front.lateral_stiffness=1.2e6", "tire.rear.lateral_stiffness=1.2e6"}, 7u);
+  log.x.clear();
+  log.y.clear();
+  log.psi.clear();
+  log.vy.clear();
+  SimConfig nominal = benchmarkNominal("lane_change");
+  nominal.simulation.duration = 16.0;
+  DiagnosisOptions options;
+  options.effects = {"cornering_stiffness", "sensing_delay", "sensor_offset", "sensor_latency"};
+  GapReport r;
+  ASSERT_NO_THROW(r = diagnoseGap(nominal, {log}, {}, options));
+  EXPECT_EQ(r.where.subsystem, "chassis");
+  std::set<std::string> untestable;
+  for (const auto& e : r.not_testable) untestable.insert(e.effect);
+  EXPECT_TRUE(untestable.count("sensing_delay"));
+  EXPECT_TRUE(untestable.count("sensor_offset (heading)") || untestable.count("sensor_offset")) << r.verdict.reason;
+  EXPECT_TRUE(untestable.count("sensor_latency (pose)") || untestable.count("sensor_latency")) << r.verdict.reason;
+  EXPECT_EQ(r.verdict.effect, "cornering_stiffness") << r.verdict.reason;
+}
+
 TEST(PartialLog, ALogThatFeedsNoReplayIsAClearError) {
   GapLog log = chassisOnlyLog({}, 7u);
   log.delta.clear();
