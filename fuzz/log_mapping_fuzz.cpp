@@ -17,6 +17,7 @@
 #include <string>
 
 #include "fuzz_support.h"
+#include "log_contract.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/log/gap_log.h"
 #include "lane_keeping/gap/log/log_mapping.h"
@@ -46,27 +47,10 @@ std::string fixedLog(bool own) {
   return text;
 }
 
-void checkContract(const GapLog& log) {
-  if (log.size() < 10) fuzz::finding("a log with " + std::to_string(log.size()) + " rows was accepted");
-  for (std::size_t i = 0; i < log.size(); ++i) {
-    if (!std::isfinite(log.t[i])) fuzz::finding("non-finite t accepted");
-    if (i > 0 && !(log.t[i] > log.t[i - 1])) fuzz::finding("t not strictly increasing at row " + std::to_string(i));
-  }
-  const std::vector<double>* columns[] = {&log.x,  &log.y,     &log.psi,       &log.yaw_rate,  &log.delta,
-                                          &log.delta_des, &log.torque, &log.v, &log.ay, &log.delta_rate};
-  for (const std::vector<double>* column : columns) {
-    if (column->empty()) continue;
-    if (column->size() != log.size()) fuzz::finding("a column's length differs from t's");
-    for (double v : *column) {
-      if (!std::isfinite(v) || std::fabs(v) > 1e9) fuzz::finding("value " + std::to_string(v) + " accepted");
-    }
-  }
-}
-
 /// readCsvLog's errors name the log or, for a mapping that does not fit it, the mapping's file.
 void readThrough(const std::string& csv, const LogMapping& mapping, const std::string& map_file) {
   try {
-    checkContract(readCsvLog(csv, mapping));
+    fuzz::checkLogContract(readCsvLog(csv, mapping));
   } catch (const LaneKeepingError& e) {
     const std::string message = e.what();
     if (message.find(csv) == std::string::npos && message.find(map_file) == std::string::npos) {

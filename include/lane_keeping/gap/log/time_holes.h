@@ -19,6 +19,10 @@ struct TimeHole {
   double t0 = 0.0, t1 = 0.0;  ///< [s] the samples before and after the hole
 };
 
+/// The median of a time axis's steps (0 with fewer than two samples): the log's sampling interval, which
+/// a hole, a jittered stamp or a dropped row does not move (GapLog::medianStep is this of its t).
+double medianTimeStep(const std::vector<double>& t);
+
 /// The holes of a time axis (strictly increasing), in order.
 std::vector<TimeHole> timeHoles(const std::vector<double>& t);
 inline std::vector<TimeHole> timeHoles(const GapLog& log) { return timeHoles(log.t); }

@@ -16,6 +16,7 @@
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/gap/log/angle_unwrap.h"
 #include "lane_keeping/gap/log/column_shift.h"
+#include "lane_keeping/gap/log/time_holes.h"
 #include "lane_keeping/sim/log_row.h"
 
 namespace lane_keeping {
@@ -307,17 +308,7 @@ std::vector<double>* GapLog::column(const std::string& name) {
   return const_cast<std::vector<double>*>(static_cast<const GapLog*>(this)->column(name));
 }
 
-double GapLog::medianStep() const {
-  if (t.size() < 2) return 0.0;
-  std::vector<double> steps(t.size() - 1);
-  for (std::size_t i = 1; i < t.size(); ++i) steps[i - 1] = t[i] - t[i - 1];
-  const std::size_t mid = steps.size() / 2;
-  std::nth_element(steps.begin(), steps.begin() + mid, steps.end());
-  if (steps.size() % 2 == 1) return steps[mid];
-  const double upper = steps[mid];
-  const double lower = *std::max_element(steps.begin(), steps.begin() + mid);
-  return 0.5 * (lower + upper);
-}
+double GapLog::medianStep() const { return medianTimeStep(t); }
 
 GapLog GapLog::slice(std::size_t begin, std::size_t end) const {
   if (begin > end || end > t.size()) {

@@ -3,9 +3,8 @@
 #include <algorithm>
 
 namespace lane_keeping {
-namespace {
 
-double medianStep(const std::vector<double>& t) {
+double medianTimeStep(const std::vector<double>& t) {
   if (t.size() < 2) return 0.0;
   std::vector<double> steps(t.size() - 1);
   for (std::size_t i = 1; i < t.size(); ++i) steps[i - 1] = t[i] - t[i - 1];
@@ -15,11 +14,9 @@ double medianStep(const std::vector<double>& t) {
   return 0.5 * (steps[mid] + *std::max_element(steps.begin(), steps.begin() + mid));
 }
 
-}  // namespace
-
 std::vector<TimeHole> timeHoles(const std::vector<double>& t) {
   std::vector<TimeHole> out;
-  const double step = medianStep(t);
+  const double step = medianTimeStep(t);
   if (!(step > 0.0)) return out;
   for (std::size_t i = 1; i < t.size(); ++i) {
     if (t[i] - t[i - 1] > kHoleSteps * step) out.push_back({t[i - 1], t[i]});
@@ -30,7 +27,7 @@ std::vector<TimeHole> timeHoles(const std::vector<double>& t) {
 std::vector<std::pair<std::size_t, std::size_t>> holeFreeStretches(const std::vector<double>& t) {
   std::vector<std::pair<std::size_t, std::size_t>> out;
   if (t.empty()) return out;
-  const double step = medianStep(t);
+  const double step = medianTimeStep(t);
   std::size_t begin = 0;
   for (std::size_t i = 1; i <= t.size(); ++i) {
     if (i < t.size() && !(step > 0.0 && t[i] - t[i - 1] > kHoleSteps * step)) continue;
