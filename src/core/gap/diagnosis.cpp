@@ -12,6 +12,7 @@
 #include "lane_keeping/gap/decision/how_far.h"
 #include "lane_keeping/gap/decision/noise_null.h"
 #include "lane_keeping/gap/decision/partial_explanation.h"
+#include "lane_keeping/gap/decision/sensor_led_selection.h"
 #include "lane_keeping/gap/decision/verdict.h"
 #include "lane_keeping/gap/decision/where_analysis.h"
 #include "lane_keeping/gap/diagnosis_data.h"
@@ -286,6 +287,32 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     say("fitting further effects on top of " + winner->effect->label());
     const Clock::time_point more_start = Clock::now();
     ForwardSelection more = forwardSelection(*winner, candidates, fits, fit_context, null, gap_before, options);
+    // Sensors before physics, several at once: the sensor errors' own chain against the physical leader's
+    // (sensor_led_selection.h).
+    const CandidateFit* sensor_first = winner->effect->sensor ? nullptr : sensorLeader(fits, report.where.subsystem, options);
+    if (sensor_first != nullptr) {
+      say("fitting further effects on top of " + sensor_first->effect->label() + " (the sensor errors' own explanation)");
+      ForwardSelection sensors =
+          forwardSelection(*sensor_first, candidates, fits, fit_context, null, gap_before, options);
+      std::string why;
+      const RankedEffect* first = nullptr;
+      for (const auto& r : report.ranking) {
+        if (r.label() == sensor_first->effect->label()) first = &r;
+      }
+      if (first != nullptr && sensorsLead(more, sensors, gap_before, options, &why)) {
+        leadWithSensors(&report.verdict, *first, sensors, more, why);
+        more = std::move(sensors);
+        winner = sensor_first;
+      } else if (sensors.effects.size() > 1) {
+        report.notes.push_back("sensor errors before physics: the sensor errors' own chain (" +
+                               std::to_string(sensors.effects.size()) + " effects, held-out gap " +
+                               briefNumber(sensors.gap_after) + ", penalised evidence " +
+                               briefNumber(penalisedEvidence(sensors, options.min_evidence_per_parameter)) +
+                               ") does not come within the physical leader's chain (held-out gap " +
+                               briefNumber(more.gap_after) + ", penalised evidence " +
+                               briefNumber(penalisedEvidence(more, options.min_evidence_per_parameter)) + ")");
+      }
+    }
     report.verdict.effects = more.effects;
     report.verdict.combined_gap_after = more.gap_after;
     report.verdict.combined_shrink = gap_before > 0.0 ? 1.0 - more.gap_after / gap_before : 0.0;

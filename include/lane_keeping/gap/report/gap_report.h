@@ -98,6 +98,9 @@ struct VerdictEffect {
   double gap_after = 0.0;   ///< held-out gap with it and every effect before it
   double evidence = 0.0;    ///< its held-out evidence over the effects before it
   bool sensor = false;      ///< a sensor or data error, not physics
+  /// Candidates that, fitted in its place (on top of the same effects before it), remove nearly as much
+  /// (within 10 points of shrink): the logs cannot tell them apart from it.
+  std::vector<std::string> confusable_with;
 };
 
 struct GapVerdict {

@@ -201,6 +201,13 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
     }
     VerdictEffect e = verdictEffect(*added, out.corrected);
     e.gap_after = gap_with;
+    // Its look-alikes in this round, as decideVerdict lists the leader's.
+    for (const auto& r : ranking) {
+      if (r.label() != pick.winner->label() && effectChangesSubsystem(r.effect, where, r.form) && r.closed_loop_bounded &&
+          r.shrink >= options.min_further_shrink && pick.winner->shrink - r.shrink < 0.1) {
+        e.confusable_with.push_back(isSensorEffect(r.effect) ? r.label() : r.effect);
+      }
+    }
     e.share = share;
     out.effects.push_back(e);
     out.added.push_back(*added);

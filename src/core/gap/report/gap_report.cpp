@@ -17,7 +17,7 @@
 //                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked"}],
 //     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..],
 //                  "effects": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {}, "share", "gap_after",
-//                               "evidence", "sensor"}], "combined_gap_after", "combined_shrink",
+//                               "evidence", "sensor", "confusable_with": [..]}], "combined_gap_after", "combined_shrink",
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
 //                  (only when a candidate explains part of the gap) },
 //     "how_far": { "before", "after", "shrink", "not_run" (why, only when the closed loop was not replayed:
@@ -152,6 +152,7 @@ OrderedJson toJson(const GapVerdict& v) {
     j["gap_after"] = number(e.gap_after);
     j["evidence"] = number(e.evidence);
     j["sensor"] = e.sensor;
+    j["confusable_with"] = e.confusable_with;
     out["effects"].push_back(j);
   }
   out["combined_gap_after"] = number(v.combined_gap_after);
@@ -496,6 +497,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "gap_after", &s.gap_after);
     r.get(e, p, "evidence", &s.evidence);
     r.get(e, p, "sensor", &s.sensor);
+    r.get(e, p, "confusable_with", &s.confusable_with);
     rep.verdict.effects.push_back(s);
   });
   r.get(v, vp, "combined_gap_after", &rep.verdict.combined_gap_after);

@@ -130,6 +130,7 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
       out << "  - " << e.effect << (e.form.empty() ? "" : " (" + e.form + ")") << (e.sensor ? " [sensor error]" : "")
           << ": " << percent(e.share);
       for (const auto& [name, value] : e.params) out << ", " << name << " " << num(value, "%.4g");
+      if (!e.confusable_with.empty()) out << " (confusable with: " << join(e.confusable_with, ", ") << ")";
       out << "\n";
     }
     out << "  - together: held-out gap " << num(v.gap_before) << " → " << num(v.combined_gap_after) << " (shrink "

@@ -1,0 +1,76 @@
+// Sensors before physics for several sensor errors at once (sensor_led_selection.h): the comparison of a
+// physical-led chain of effects with a sensor-led one, on hand-made chains.
+#include <gtest/gtest.h>
+
+#include "lane_keeping/gap/decision/sensor_led_selection.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+namespace {
+
+VerdictEffect effect(const std::string& name, double evidence, int parameters, bool sensor) {
+  VerdictEffect e;
+  e.effect = name;
+  e.evidence = evidence;
+  e.sensor = sensor;
+  for (int i = 0; i < parameters; ++i) e.params["p" + std::to_string(i)] = 1.0;
+  return e;
+}
+
+ForwardSelection chain(std::vector<VerdictEffect> effects, double gap_after) {
+  ForwardSelection c;
+  c.effects = std::move(effects);
+  c.gap_after = gap_after;
+  return c;
+}
+
+DiagnosisOptions options() {
+  DiagnosisOptions o;
+  o.min_evidence_per_parameter = 50.0;
+  o.min_shrink = 0.3;
+  return o;
+}
+
+TEST(SensorLedSelection, PenalisedEvidenceIsTheSumLessTheParametersCost) {
+  const ForwardSelection c = chain({effect("a", 1000.0, 2, false), effect("b", 300.0, 1, true)}, 0.1);
+  EXPECT_DOUBLE_EQ(penalisedEvidence(c, 50.0), 1300.0 - 150.0);
+}
+
+TEST(SensorLedSelection, TwoSensorErrorsThatTogetherExplainMoreTakeTheLead) {
+  // The race car's figures (docs/real_logs/super_fj_fuji.md): a side force of evidence 5.7e5 alone, a
+  // steering offset 4.8e5 and a second effect 4.3e5 on top of it.
+  const ForwardSelection physical = chain({effect("lateral_disturbance", 5.73e5, 2, false)}, 0.25);
+  const ForwardSelection sensors = chain({effect("sensor_offset", 4.79e5, 1, true), effect("sensor_scale", 4.27e5, 1, true)}, 0.0);
+  std::string why;
+  EXPECT_TRUE(sensorsLead(physical, sensors, 0.515, options(), &why));
+  EXPECT_NE(why.find("together remove 100 %"), std::string::npos) << why;
+}
+
+TEST(SensorLedSelection, APhysicalChainThatExplainsClearlyMoreKeepsTheLead) {
+  const ForwardSelection physical = chain({effect("cornering_stiffness", 9000.0, 2, false)}, 0.02);
+  const ForwardSelection sensors = chain({effect("sensor_scale", 5000.0, 1, true), effect("sensor_offset", 1000.0, 1, true)}, 0.3);
+  EXPECT_FALSE(sensorsLead(physical, sensors, 1.0, options(), nullptr));
+}
+
+TEST(SensorLedSelection, APhysicalLeaderMustBeatTheSensorsByItsParametersCost) {
+  // Equal penalised evidence up to less than 50 per parameter of the physical leader (2 here): sensors.
+  const ForwardSelection sensors = chain({effect("sensor_offset", 500.0, 1, true), effect("sensor_scale", 500.0, 1, true)}, 0.1);
+  const double sensors_score = 1000.0 - 100.0;
+  const ForwardSelection close = chain({effect("inertia", sensors_score + 100.0 + 99.0, 2, false)}, 0.1);
+  const ForwardSelection clear = chain({effect("inertia", sensors_score + 100.0 + 101.0, 2, false)}, 0.1);
+  EXPECT_TRUE(sensorsLead(close, sensors, 1.0, options(), nullptr));
+  EXPECT_FALSE(sensorsLead(clear, sensors, 1.0, options(), nullptr));
+}
+
+TEST(SensorLedSelection, OneSensorErrorOrTooLittleShrinkSaysNothingNew) {
+  const ForwardSelection physical = chain({effect("lateral_disturbance", 100.0, 2, false)}, 0.5);
+  // One sensor error was compared with the physical leader already (winner_selection.h).
+  EXPECT_FALSE(sensorsLead(physical, chain({effect("sensor_offset", 5000.0, 1, true)}, 0.1), 1.0, options(), nullptr));
+  // A chain that removes less than min_shrink (30 %) of the gap cannot lead, whatever its evidence.
+  const ForwardSelection weak = chain({effect("sensor_offset", 5000.0, 1, true), effect("sensor_scale", 5000.0, 1, true)}, 0.75);
+  EXPECT_FALSE(sensorsLead(physical, weak, 1.0, options(), nullptr));
+}
+
+}  // namespace
+}  // namespace diagnosis
+}  // namespace lane_keeping
