@@ -80,8 +80,11 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
   std::set<std::string> named{leader.effect->sensor ? leader.effect->label() : leader.effect->name};
   const std::map<std::string, double> reference = null.largestHeldExcess();
   std::map<std::string, std::vector<double>> warm;
+  // A fit alone pinned at a bound of its range was stretching to imitate something else (the race car's
+  // gyro scale at 0.5 imitated a side force): neither a start nor a screen for its fit on top of others,
+  // where its optimum lies elsewhere (0.63 there). It is fitted afresh.
   for (const CandidateFit& fit : first_round) {
-    if (fit.ok) warm[fit.effect->label()] = fit.theta;
+    if (fit.ok && !fit.at_bound) warm[fit.effect->label()] = fit.theta;
   }
   const std::vector<double> null_totals = null.heldTotals();
 
