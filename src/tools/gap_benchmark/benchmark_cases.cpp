@@ -1,9 +1,7 @@
 #include "gap_benchmark/benchmark_cases.h"
 
 #include <cmath>
-#include <limits>
 #include <map>
-#include <random>
 #include <sstream>
 #include <stdexcept>
 #include <string>
@@ -13,7 +11,6 @@
 #include "gap_benchmark/independent_groups.h"
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
-#include "lane_keeping/config/timed_change.h"
 #include "lane_keeping/gap/log/gap_run.h"
 #include "lane_keeping/sim/closed_loop.h"
 
@@ -222,8 +219,8 @@ std::vector<BenchmarkCase> independentCases() {
         {"steering.friction_model=lugre", "steering.coulomb_friction=" + pick(2.0, 5.0),
          "steering.breakaway_friction=" + pick(3.0, 7.0), "steering.friction_velocity=0.02", "steering.friction_stiffness=2e4"},
         {"actuator.p=2000"}, 0.0, 1.5);
-    // On the sensors (out of the list until issue 46 made sensor errors candidates): a localisation
-    // latency, a yaw-rate sensor bias.
+    // On the sensors: a localisation latency, a yaw-rate sensor bias (out of the list until the sensor
+    // candidates came: sensor_latency of the pose, sensor_offset of the gyro; the ids keep their names).
     for (const std::string m : {"bend", "lane_change"}) {
       add("localisation_latency-" + size + "-" + m, "in_list", "sensor_latency", size, m,
           {"sensors.pose_latency=" + pick(0.04, 0.1)}, {});
@@ -299,7 +296,8 @@ std::vector<BenchmarkCase> independentCases() {
     add("none-" + std::to_string(i + 1) + "-" + m + "-p" + num(strengths[i % strengths.size()]) + "-" + num(rate) + "Hz",
         "none", "none", "", m, {}, setup, rate, noise[i % noise.size()]);
   }
-  // The groups of issues 46 and 47, each scored in its own table (independent_groups.h).
+  // The groups (independent_groups.h: sensor errors alone and with a physical effect), each scored in
+  // its own table.
   for (auto& c : independentGroupCases()) cases.push_back(std::move(c));
   return cases;
 }
@@ -312,11 +310,7 @@ std::vector<BenchmarkCase> familyCases(const std::string& family) {
 
 SimConfig benchmarkCaseNominal(const BenchmarkCase& c) {
   const SimConfig base = benchmarkNominal(c.manoeuvre);
-  if (c.car.empty() && c.setup.empty()) return base;
-  // The car first, then the run's set-up (which may change what the car's own values were).
-  std::vector<std::string> assignments = c.car;
-  assignments.insert(assignments.end(), c.setup.begin(), c.setup.end());
-  return withAssignments(base, assignments, "benchmark set-up");
+  return c.setup.empty() ? base : withAssignments(base, c.setup, "benchmark set-up");
 }
 
 std::vector<TruthEffect> BenchmarkCase::truthEffects() const {
@@ -416,9 +410,7 @@ SimConfig benchmarkTruth(const BenchmarkCase& c) {
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise, double log_rate) {
   SimConfig truth = benchmarkTruth(c);
   truth.simulation.log_rate = c.log_rate > 0.0 ? c.log_rate : log_rate;
-  std::vector<TimedChange> changes;
-  for (const auto& text : c.truth_changes) changes.push_back(parseTimedChange(text));
-  const RunResult run = changes.empty() ? ClosedLoop(truth).run() : ClosedLoop(truth, changes).run();
+  const RunResult run = ClosedLoop(truth).run();
   if (run.diverged()) throw LaneKeepingError("benchmark case " + c.id + ": the truth run " + run.message);
   GapLog log = gapLogFromRows(run.rows, c.id + ".csv");
   SensorNoise scaled = noise;
@@ -431,22 +423,7 @@ GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise, do
     scaled.character[column].sigma *= c.noise_scale;
   }
   addSensorNoise(log, scaled, c.seed);
-  // Its own random stream (the noise draws stay those of the same case without jitter).
-  if (c.stamp_jitter > 0.0) jitterStamps(log, c.stamp_jitter, c.seed + 104729);
   return log;
-}
-
-void jitterStamps(GapLog& log, double jitter, unsigned seed) {
-  double spacing = std::numeric_limits<double>::infinity();
-  for (std::size_t i = 1; i < log.t.size(); ++i) spacing = std::min(spacing, log.t[i] - log.t[i - 1]);
-  if (!(jitter >= 0.0) || (log.t.size() > 1 && !(jitter < 0.5 * spacing))) {
-    throw std::invalid_argument("stamp jitter " + formatNumber(jitter) + " s: must lie in [0, half the smallest spacing " +
-                                formatNumber(0.5 * spacing) + " s) of " + log.source + ", so that the stamps stay increasing");
-  }
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> shift(-jitter, jitter);
-  // The first row keeps its stamp: the run's start, where the scenario's initial state holds.
-  for (std::size_t i = 1; i < log.t.size(); ++i) log.t[i] += shift(rng);
 }
 
 }  // namespace lane_keeping

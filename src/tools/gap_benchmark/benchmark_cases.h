@@ -51,8 +51,8 @@ struct BenchmarkCase {
   std::string heldout_manoeuvre{};
   std::vector<std::string> heldout_setup{};  ///< scenario keys on top of the held-out manoeuvre
 
-  // What the groups of issues 46 (item 7) and 47 need; every default leaves a case as it was (its log
-  // the same to the last bit).
+  // What the groups (independent_groups.h) need; every default leaves a case as it was (its log the
+  // same to the last bit).
   /// The table the scorer counts the case in ("" = the family's first table, where the cases written
   /// before these groups stay).
   std::string group{};
@@ -62,22 +62,9 @@ struct BenchmarkCase {
   /// Several hidden effects at once (two-at-once cases; empty: the one of truth / truth_form): the
   /// verdict is right if its effect is one of them, "both named" if each is among verdict.effects.
   std::vector<TruthEffect> truths{};
-  /// [s] when the hidden effect sets in, in each run's own time (0: from the start): the diagnosis's
-  /// reported onset must lie within +-2 s of it.
-  double onset = 0.0;
-  /// Runtime changes of the truth ("T:key=value", config/timed_change.h): the effect that sets in at T
-  /// (set together with `onset`). The held-out run has them at the same times of its own clock.
-  std::vector<std::string> truth_changes{};
-  /// Another car (key=value of vehicle, tire, steering and controller gains, applied to the manoeuvre's
-  /// nominal before `setup`): part of the nominal configuration the diagnosis is given.
-  std::vector<std::string> car{};
   /// Per logged column ("yaw_rate", "delta", "torque", "ay", ...): the sensor's character where it is
   /// more than white noise (a vehicle bus's quantised, held, coloured channels; sensor_character.h).
   std::map<std::string, ChannelCharacter> sensor_character{};
-  /// [s] the largest shift of a row's stamp from its sample time (uniform, zero mean, seeded from `seed`,
-  /// below half the log's period so that the stamps stay increasing; jitterStamps): a bus's message
-  /// stamps. 0 = none.
-  double stamp_jitter = 0.0;
 
   /// The hidden effects the verdict is scored against: `truths`, or {truth, truth_form} for one.
   std::vector<TruthEffect> truthEffects() const;
@@ -104,22 +91,17 @@ BenchmarkCase benchmarkCase(const std::string& id);
 /// offsets up to 3 m), actuator strengths p 500-2000, other tracker gains, 100 Hz and 1 kHz logs, noise
 /// levels +-50 %; 40 no-effect logs over those set-ups; sensor errors (out of the list until issue 46:
 /// a localisation latency, a yaw-rate bias); a crosswind that sets in mid-run; and pairs of runs on
-/// different roads (a training and a held-out run). Then the groups of issues 46 and 47, each scored in
-/// its own table (independent_groups.h).
+/// different roads (a training and a held-out run). Then the groups (independent_groups.h: sensor
+/// errors alone and with a physical effect), each scored in its own table.
 std::vector<BenchmarkCase> independentCases();
 /// The cases of a family: "candidates" (benchmarkCases()) or "independent".
 std::vector<BenchmarkCase> familyCases(const std::string& family);
-/// The nominal configuration the diagnosis of a case is given: its manoeuvre's with the case's car and
-/// set-up.
+/// The nominal configuration the diagnosis of a case is given: its manoeuvre's with the case's set-up.
 SimConfig benchmarkCaseNominal(const BenchmarkCase& c);
 /// The truth configuration of a case: its nominal with the case's overlay applied.
 SimConfig benchmarkTruth(const BenchmarkCase& c);
-/// Simulates the truth of a case (with its runtime changes) and returns its noisy log, its stamps
-/// jittered where the case says so (throws if the truth run diverges).
+/// Simulates the truth of a case and returns its noisy log, each column through its sensor character
+/// where the case gives one (throws if the truth run diverges).
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise = {}, double log_rate = 500.0);
-/// Moves each stamp of `log` but the first (the run's start) by a uniform draw in [-jitter, +jitter]
-/// (reproducible from `seed`); throws
-/// std::invalid_argument unless 0 <= jitter < half the smallest spacing (the stamps stay increasing).
-void jitterStamps(GapLog& log, double jitter, unsigned seed);
 
 }  // namespace lane_keeping

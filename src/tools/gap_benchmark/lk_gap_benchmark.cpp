@@ -16,9 +16,10 @@
 // with truth.json and prints the confusion matrix, top-1 accuracy, median held-out shrink when right
 // (and the truth model's, where `ceiling` ran), false alarms on no-effect logs and the out-of-list
 // verdicts; then, for the independent family's groups (independent_groups.h), one table per group:
-// top-1 (effect, and form where the case sets one), several effects at once (the verdict one of them,
-// all named), onsets within +-2 s, no-effect and out-of-list logs `unexplained`, the median held-out
-// and closed-loop (how far) shrinks when right, and each log.
+// top-1 (effect, and its form where the case sets one: a sensor error's channel), several effects at
+// once (the verdict one of them, all named in verdict.effects), no-effect and out-of-list logs
+// `unexplained`, the median held-out and closed-loop (how far) shrinks when right, and each log; last,
+// the whole family against its targets (printOverall).
 // Exit status (usage()): 0 ok, 2 bad arguments, 4 bad input data, 1 other error.
 #include <sys/stat.h>
 
@@ -42,6 +43,7 @@
 #include "gap_benchmark/benchmark_cases.h"
 #include "gap_benchmark/independent_groups.h"
 #include "lane_keeping/gap/diagnosis.h"
+#include "lane_keeping/gap/fit/candidate_effects.h"
 #include "lane_keeping/gap/log/gap_run.h"
 #include "lane_keeping/gap/report/gap_report.h"
 
@@ -88,9 +90,6 @@ json truthJson(const BenchmarkCase& c) {
     j["truths"] = json::array();
     for (const auto& t : c.truths) j["truths"].push_back({{"effect", t.effect}, {"form", t.form}});
   }
-  if (c.onset > 0.0) j["onset"] = c.onset;
-  if (!c.truth_changes.empty()) j["changes"] = c.truth_changes;
-  if (!c.car.empty()) j["car"] = c.car;
   if (!c.sensor_character.empty()) {
     json characters = json::object();
     for (const auto& [column, ch] : c.sensor_character) {
@@ -99,7 +98,6 @@ json truthJson(const BenchmarkCase& c) {
     }
     j["sensor_character"] = characters;
   }
-  if (c.stamp_jitter > 0.0) j["stamp_jitter"] = c.stamp_jitter;
   return j;
 }
 
@@ -120,9 +118,6 @@ BenchmarkCase caseFromTruth(const json& t) {
   if (t.contains("truths")) {
     for (const auto& e : t["truths"]) c.truths.push_back({e["effect"].get<std::string>(), e.value("form", std::string())});
   }
-  c.onset = t.value("onset", 0.0);
-  if (t.contains("changes")) c.truth_changes = t["changes"].get<std::vector<std::string>>();
-  if (t.contains("car")) c.car = t["car"].get<std::vector<std::string>>();
   if (t.contains("sensor_character")) {
     for (const auto& [column, ch] : t["sensor_character"].items()) {
       ChannelCharacter character;
@@ -134,7 +129,6 @@ BenchmarkCase caseFromTruth(const json& t) {
       c.sensor_character[column] = character;
     }
   }
-  c.stamp_jitter = t.value("stamp_jitter", 0.0);
   return c;
 }
 
@@ -227,10 +221,6 @@ void ceiling(const std::string& dir, const std::string& filter, int threads) {
   for (const auto& t : truth) {
     const BenchmarkCase c = caseFromTruth(t);
     if ((!filter.empty() && c.id.find(filter) == std::string::npos) || c.category == "none") continue;
-    if (!c.truth_changes.empty()) {  // the truth's overlay alone is not its configuration
-      std::fprintf(stderr, "[ceiling]  %-44s skipped: the effect sets in mid-run (runtime changes)\n", c.id.c_str());
-      continue;
-    }
     const auto start = std::chrono::steady_clock::now();
     const auto [training, heldout] = caseRuns(dir, case_entries.at(c.id));
     DiagnosisOptions options;
@@ -280,29 +270,10 @@ std::string label(const std::string& effect, const std::string& form) {
   return form.empty() ? effect : effect + " (" + form + ")";
 }
 
-/// The onsets a report gives: where.onset (one run) and, where the diagnosis reports them per run,
-/// where.onsets (numbers, or objects with "onset"; null where a run has none).
-std::vector<double> reportedOnsets(const std::string& path) {
-  std::ifstream in(path);
-  const json j = json::parse(in);
-  std::vector<double> out;
-  if (!j.contains("where")) return out;
-  const json& where = j["where"];
-  if (where.contains("onset") && where["onset"].is_number()) out.push_back(where["onset"].get<double>());
-  if (where.contains("onsets") && where["onsets"].is_array()) {
-    for (const auto& o : where["onsets"]) {
-      if (o.is_number()) out.push_back(o.get<double>());
-      else if (o.is_object() && o.contains("onset") && o["onset"].is_number()) out.push_back(o["onset"].get<double>());
-    }
-  }
-  return out;
-}
-
 /// A case with its report.
 struct ScoredCase {
   BenchmarkCase c;
   GapReport r;
-  std::vector<double> onsets;  ///< reported onsets [s]
 
   /// The verdict names the (one) truth, in its form where the truth has one.
   bool right() const {
@@ -317,14 +288,6 @@ struct ScoredCase {
       bool found = false;
       for (const auto& e : r.verdict.effects) found = found || names(t, e.effect, e.form);
       if (!found) return false;
-    }
-    return true;
-  }
-  /// A reported onset, and every reported one within +-2 s of the truth's.
-  bool onsetRight() const {
-    if (onsets.empty()) return false;
-    for (double t : onsets) {
-      if (!(std::fabs(t - c.onset) <= 2.0)) return false;
     }
     return true;
   }
@@ -440,10 +403,10 @@ void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& sco
   }
 }
 
-/// One group's table (issues 46 and 47's measures), as Markdown for docs/gap.md, then each log.
+/// One group's table, as Markdown for docs/gap.md, then each log.
 void printGroupTable(const std::string& group, const std::vector<ScoredCase>& scored) {
-  int single = 0, single_right = 0, several = 0, one_of = 0, both = 0, onset_cases = 0, onset_right = 0,
-      onset_with_time = 0, none = 0, none_unexplained = 0, outside = 0, outside_unexplained = 0;
+  int single = 0, single_right = 0, several = 0, one_of = 0, both = 0, none = 0, none_unexplained = 0, outside = 0,
+      outside_unexplained = 0;
   std::vector<double> shrinks, how_far;
   std::vector<std::string> lines;
   for (const ScoredCase& s : scored) {
@@ -469,11 +432,6 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
         single_right += right;
         mark = right ? "right" : "miss";
       }
-      if (s.c.onset > 0.0) {
-        ++onset_cases;
-        onset_right += right;
-        onset_with_time += right && s.onsetRight();
-      }
       if (right) {
         shrinks.push_back(s.shrink());
         if (std::isfinite(s.howFarShrink())) how_far.push_back(s.howFarShrink());
@@ -481,21 +439,11 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
     }
     std::string named;
     for (const auto& e : s.r.verdict.effects) named += (named.empty() ? "" : ", ") + label(e.effect, e.form);
-    std::string onset_text;
-    if (s.c.onset > 0.0) {
-      onset_text = "  onset " + formatNumber(s.c.onset) + " s, reported";
-      if (s.onsets.empty()) onset_text += " none";
-      for (double t : s.onsets) {
-        char text[32];
-        std::snprintf(text, sizeof(text), " %.1f s", t);
-        onset_text += text;
-      }
-    }
     const std::string named_text = s.r.verdict.effects.size() > 1 ? "  named: " + named : "";
     char line[768];
-    std::snprintf(line, sizeof(line), "  %-56s %-44s -> %-34s %-12s shrink %s, how far %s%s%s", s.c.id.c_str(),
+    std::snprintf(line, sizeof(line), "  %-56s %-44s -> %-34s %-12s shrink %s, how far %s%s", s.c.id.c_str(),
                   s.truthLabel().c_str(), s.verdictLabel().c_str(), mark.c_str(), percent(s.shrink()).c_str(),
-                  percent(s.howFarShrink()).c_str(), named_text.c_str(), onset_text.c_str());
+                  percent(s.howFarShrink()).c_str(), named_text.c_str());
     lines.push_back(line);
   }
   std::printf("\n=== %s (%zu logs) ===\n\n| | measured |\n|---|---|\n", group.c_str(), scored.size());
@@ -503,10 +451,6 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
   if (several) {
     std::printf("| several effects at once: the verdict is one of them | %s |\n", ratio(one_of, several).c_str());
     std::printf("| several effects at once: all named (verdict.effects) | %s |\n", ratio(both, several).c_str());
-  }
-  if (onset_cases) {
-    std::printf("| effect that sets in mid-run: right, with its onset (+-2 s) | %s, onset %s |\n",
-                ratio(onset_right, onset_cases).c_str(), ratio(onset_with_time, onset_cases).c_str());
   }
   if (none) std::printf("| no-effect logs judged `unexplained` | %s |\n", ratio(none_unexplained, none).c_str());
   if (outside) std::printf("| out-of-list logs judged `unexplained` | %s |\n", ratio(outside_unexplained, outside).c_str());
@@ -516,6 +460,47 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
   }
   std::printf("\n");
   for (const auto& line : lines) std::printf("%s\n", line.c_str());
+}
+
+/// The whole family against its targets (issue 46 item 7): one in-list effect (all of them, and the
+/// sensor errors apart), a sensor error with a physical effect, no-effect and out-of-list logs.
+void printOverall(const std::vector<ScoredCase>& all) {
+  int single = 0, single_right = 0, sensor = 0, sensor_right = 0, several = 0, one_of = 0, both = 0, none = 0,
+      none_unexplained = 0, outside = 0, outside_unexplained = 0;
+  for (const ScoredCase& s : all) {
+    const bool unexplained = s.r.verdict.effect == "unexplained";
+    if (s.c.category == "none") {
+      ++none;
+      none_unexplained += unexplained;
+    } else if (s.c.category == "out_of_list") {
+      ++outside;
+      outside_unexplained += unexplained;
+    } else if (s.c.truthEffects().size() > 1) {
+      ++several;
+      one_of += s.right();
+      both += s.right() && s.allNamed();
+    } else {
+      ++single;
+      single_right += s.right();
+      if (isSensorEffect(s.c.truth)) {
+        ++sensor;
+        sensor_right += s.right();
+      }
+    }
+  }
+  auto share = [](int n, int of) { return of ? percent(static_cast<double>(n) / of) : std::string("-"); };
+  std::printf("\n=== The whole family (%zu logs) ===\n\n| | measured | target |\n|---|---|---|\n", all.size());
+  std::printf("| top-1, one in-list effect | %s = %s | >= 90 %% |\n", ratio(single_right, single).c_str(),
+              share(single_right, single).c_str());
+  std::printf("| of which sensor errors (effect and channel) | %s = %s | |\n", ratio(sensor_right, sensor).c_str(),
+              share(sensor_right, sensor).c_str());
+  std::printf("| of which physical effects | %s = %s | |\n", ratio(single_right - sensor_right, single - sensor).c_str(),
+              share(single_right - sensor_right, single - sensor).c_str());
+  std::printf("| two at once: the verdict is one of them | %s | |\n", ratio(one_of, several).c_str());
+  std::printf("| two at once: both named (verdict.effects) | %s | |\n", ratio(both, several).c_str());
+  std::printf("| no-effect logs judged `unexplained` | %s = %s | >= 95 %% |\n", ratio(none_unexplained, none).c_str(),
+              share(none_unexplained, none).c_str());
+  std::printf("| out-of-list logs judged `unexplained` | %s | |\n", ratio(outside_unexplained, outside).c_str());
 }
 
 int score(const std::string& dir) {
@@ -528,7 +513,7 @@ int score(const std::string& dir) {
     const std::string path = dir + "/reports/" + id + "/report.json";
     std::ifstream probe(path);
     if (!probe) continue;
-    ScoredCase s{caseFromTruth(t), readGapReportJson(path), reportedOnsets(path)};
+    ScoredCase s{caseFromTruth(t), readGapReportJson(path)};
     if (s.c.group.empty()) {
       family.push_back(std::move(s));
     } else {
@@ -538,7 +523,7 @@ int score(const std::string& dir) {
   }
   if (!family.empty() || groups.empty()) printFamilyTable(dir, family);
   if (groups.empty()) return 0;
-  std::printf("\n\nThe groups (issues 46 and 47), each in its own table: right = the verdict names the hidden effect, and "
+  std::printf("\n\nThe groups, each in its own table: right = the verdict names the hidden effect, and "
               "its form where the case sets one; how far = 1 - how_far.after / how_far.before.\n");
   std::map<std::string, std::map<std::string, int>> confusion;
   for (const auto& name : group_order) {
@@ -552,6 +537,9 @@ int score(const std::string& dir) {
   }
   std::printf("\nThe groups' one-effect and no-effect logs:\n");
   printConfusion(confusion);
+  std::vector<ScoredCase> all = family;
+  for (const auto& [name, cases] : groups) all.insert(all.end(), cases.begin(), cases.end());
+  printOverall(all);
   return 0;
 }
 
