@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "gap_benchmark/independent_groups.h"
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
 #include "lane_keeping/gap/log/gap_run.h"
@@ -189,6 +190,7 @@ std::vector<BenchmarkCase> independentCases() {
           {"sensors.pose_bias_y=" + pick(0.08, 0.2), "sensors.pose_bias_psi=" + pick(0.004, 0.01),
            "sensors.pose_bias_variation=0.3", "sensors.pose_bias_wavelength=250"},
           {});
+      cases.back().truth_form = "heading";
     }
     // A progressive column whose angle sensor sits on the motor side; p other than the default.
     for (const std::string m : {"lane_change", "bend"}) {
@@ -222,8 +224,10 @@ std::vector<BenchmarkCase> independentCases() {
     for (const std::string m : {"bend", "lane_change"}) {
       add("localisation_latency-" + size + "-" + m, "in_list", "sensor_latency", size, m,
           {"sensors.pose_latency=" + pick(0.04, 0.1)}, {});
+      cases.back().truth_form = "pose";
       add("yaw_rate_bias-" + size + "-" + m, "in_list", "sensor_offset", size, m,
           {"sensors.yaw_rate_bias=" + pick(0.003, 0.008)}, {});
+      cases.back().truth_form = "yaw_rate";
     }
   }
   // A crosswind that sets in mid-run (from x = 200 m, about 9 s into a 20 s run), which the diagnosis
@@ -254,6 +258,7 @@ std::vector<BenchmarkCase> independentCases() {
   pair("pose_bias-localisation-pair-bend-sinusoid", "in_list", "sensor_offset", "bend",
        {"sensors.pose_bias_y=0.15", "sensors.pose_bias_psi=0.008"}, {"tracker.k_y=0.08"}, "sinusoid",
        {"simulation.initial.y=0.5"});
+  cases.back().truth_form = "heading";
   pair("steering_compliance-motor_sensor-pair-lane_change-sinusoid", "in_list", "steering_compliance", "lane_change",
        {"steering.column_stiffness=2000", "steering.column_damping=15", "steering.column_inertia=0.05",
         "steering.angle_sensor=column"},
@@ -263,6 +268,7 @@ std::vector<BenchmarkCase> independentCases() {
        {"simulation.initial.y=-0.5"});
   pair("yaw_rate_bias-pair-bend-lane_change", "in_list", "sensor_offset", "bend", {"sensors.yaw_rate_bias=0.006"},
        {}, "lane_change", {"simulation.duration=15"});
+  cases.back().truth_form = "yaw_rate";
   pair("none-pair-1-lane_change-bend", "none", "none", "lane_change", {}, {"actuator.p=1250"}, "bend",
        {"simulation.initial.y=1.5", "simulation.duration=15"});
   pair("none-pair-2-sinusoid-straight", "none", "none", "sinusoid", {}, {"tracker.k_y=0.08"}, "straight",
@@ -290,6 +296,9 @@ std::vector<BenchmarkCase> independentCases() {
     add("none-" + std::to_string(i + 1) + "-" + m + "-p" + num(strengths[i % strengths.size()]) + "-" + num(rate) + "Hz",
         "none", "none", "", m, {}, setup, rate, noise[i % noise.size()]);
   }
+  // The groups (independent_groups.h: sensor errors alone and with a physical effect), each scored in
+  // its own table.
+  for (auto& c : independentGroupCases()) cases.push_back(std::move(c));
   return cases;
 }
 
@@ -302,6 +311,11 @@ std::vector<BenchmarkCase> familyCases(const std::string& family) {
 SimConfig benchmarkCaseNominal(const BenchmarkCase& c) {
   const SimConfig base = benchmarkNominal(c.manoeuvre);
   return c.setup.empty() ? base : withAssignments(base, c.setup, "benchmark set-up");
+}
+
+std::vector<TruthEffect> BenchmarkCase::truthEffects() const {
+  if (!truths.empty()) return truths;
+  return {{truth, truth_form}};
 }
 
 std::vector<BenchmarkCase> benchmarkCases(int none_per_manoeuvre) {
@@ -403,6 +417,10 @@ GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise, do
   for (double* level : {&scaled.position, &scaled.heading, &scaled.yaw_rate, &scaled.steering, &scaled.steering_rate,
                         &scaled.torque, &scaled.lateral_acceleration, &scaled.speed}) {
     *level *= c.noise_scale;
+  }
+  for (const auto& [column, character] : c.sensor_character) {
+    scaled.character[column] = character;
+    scaled.character[column].sigma *= c.noise_scale;
   }
   addSensorNoise(log, scaled, c.seed);
   return log;

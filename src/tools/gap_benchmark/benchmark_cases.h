@@ -11,6 +11,7 @@
 /// magnitudes and on two manoeuvres, plus logs with no effect and logs with effects outside the
 /// candidate list (steering dead band, a delay on the steering-angle sensor only, a varying speed).
 /// Every log gets sensor noise. The diagnosis sees only the log and the nominal configuration.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -21,12 +22,19 @@
 namespace lane_keeping {
 
 
+/// One hidden effect of a case with several (BenchmarkCase::truths): a candidate name and the form
+/// (channel or placement) the verdict must name ("" = any).
+struct TruthEffect {
+  std::string effect;
+  std::string form{};
+};
+
 struct BenchmarkCase {
   std::string id;                  ///< e.g. "steering_friction-large-sinusoid"
   std::string category;            ///< in_list | none | out_of_list
   std::string truth;               ///< candidate name, "none", or the out-of-list effect's name
-  std::string magnitude;           ///< small | large (empty for none)
-  std::string manoeuvre;           ///< lane_change | sinusoid
+  std::string magnitude;           ///< small | large, or the magnitude in words (empty for none)
+  std::string manoeuvre;           ///< lane_change | sinusoid | straight | bend
   std::vector<std::string> truth_overlay;  ///< key=value on top of the nominal configuration
   unsigned seed = 1;               ///< noise seed
   /// The independent family: the case's own set-up (key=value on the manoeuvre's nominal, known to the
@@ -42,6 +50,24 @@ struct BenchmarkCase {
   /// user brings runs of different roads.
   std::string heldout_manoeuvre{};
   std::vector<std::string> heldout_setup{};  ///< scenario keys on top of the held-out manoeuvre
+
+  // What the groups (independent_groups.h) need; every default leaves a case as it was (its log the
+  // same to the last bit).
+  /// The table the scorer counts the case in ("" = the family's first table, where the cases written
+  /// before these groups stay).
+  std::string group{};
+  /// The form the verdict must name with `truth` (a sensor error's channel, an effect's placement; ""
+  /// = any form): "heading" for a heading mount, "pose" for a localisation latency.
+  std::string truth_form{};
+  /// Several hidden effects at once (two-at-once cases; empty: the one of truth / truth_form): the
+  /// verdict is right if its effect is one of them, "both named" if each is among verdict.effects.
+  std::vector<TruthEffect> truths{};
+  /// Per logged column ("yaw_rate", "delta", "torque", "ay", ...): the sensor's character where it is
+  /// more than white noise (a vehicle bus's quantised, held, coloured channels; sensor_character.h).
+  std::map<std::string, ChannelCharacter> sensor_character{};
+
+  /// The hidden effects the verdict is scored against: `truths`, or {truth, truth_form} for one.
+  std::vector<TruthEffect> truthEffects() const;
 };
 
 /// The held-out run of a case: its manoeuvre, the case's set-up plus heldout_setup, its own noise seed.
@@ -63,8 +89,10 @@ BenchmarkCase benchmarkCase(const std::string& id);
 /// real cars have them (a localisation bias the log records too, a column sensed on the motor side, a
 /// road bank the accelerometer does not sense), other path shapes (a bend, a straight road with initial
 /// offsets up to 3 m), actuator strengths p 500-2000, other tracker gains, 100 Hz and 1 kHz logs, noise
-/// levels +-50 %; 40 no-effect logs over those set-ups; out-of-list effects on the sensors; a crosswind
-/// that sets in mid-run; and pairs of runs on different roads (a training and a held-out run).
+/// levels +-50 %; 40 no-effect logs over those set-ups; sensor errors (out of the list until issue 46:
+/// a localisation latency, a yaw-rate bias); a crosswind that sets in mid-run; and pairs of runs on
+/// different roads (a training and a held-out run). Then the groups (independent_groups.h: sensor
+/// errors alone and with a physical effect), each scored in its own table.
 std::vector<BenchmarkCase> independentCases();
 /// The cases of a family: "candidates" (benchmarkCases()) or "independent".
 std::vector<BenchmarkCase> familyCases(const std::string& family);
@@ -72,8 +100,8 @@ std::vector<BenchmarkCase> familyCases(const std::string& family);
 SimConfig benchmarkCaseNominal(const BenchmarkCase& c);
 /// The truth configuration of a case: its nominal with the case's overlay applied.
 SimConfig benchmarkTruth(const BenchmarkCase& c);
-/// Simulates the truth of a case and returns its noisy log (throws if the truth run diverges).
+/// Simulates the truth of a case and returns its noisy log, each column through its sensor character
+/// where the case gives one (throws if the truth run diverges).
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise = {}, double log_rate = 500.0);
-/// Adds seeded Gaussian noise to every measured column.
 
 }  // namespace lane_keeping

@@ -15,7 +15,12 @@
 // candidate would reach, which replay limits and noise keep below 100 %. `score` compares the verdicts
 // with truth.json and prints the confusion matrix, top-1 accuracy, median held-out shrink when right
 // (and the truth model's, where `ceiling` ran), false alarms on no-effect logs and the out-of-list
-// verdicts. Exit status (usage()): 0 ok, 2 bad arguments, 4 bad input data, 1 other error.
+// verdicts; then, for the independent family's groups (independent_groups.h), one table per group:
+// top-1 (effect, and its form where the case sets one: a sensor error's channel), several effects at
+// once (the verdict one of them, all named in verdict.effects), no-effect and out-of-list logs
+// `unexplained`, the median held-out and closed-loop (how far) shrinks when right, and each log; last,
+// the whole family against its targets (printOverall).
+// Exit status (usage()): 0 ok, 2 bad arguments, 4 bad input data, 1 other error.
 #include <sys/stat.h>
 
 #include <algorithm>
@@ -34,8 +39,11 @@
 
 #include "lane_keeping/common/command_line.h"
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/param_readers.h"
 #include "gap_benchmark/benchmark_cases.h"
+#include "gap_benchmark/independent_groups.h"
 #include "lane_keeping/gap/diagnosis.h"
+#include "lane_keeping/gap/fit/candidate_effects.h"
 #include "lane_keeping/gap/log/gap_run.h"
 #include "lane_keeping/gap/report/gap_report.h"
 
@@ -72,9 +80,25 @@ std::vector<BenchmarkCase> selectCases(const std::string& family, const std::str
 
 /// A case as truth.json holds it (caseFromTruth reads it back).
 json truthJson(const BenchmarkCase& c) {
-  return {{"id", c.id},         {"category", c.category},    {"truth", c.truth}, {"magnitude", c.magnitude},
-          {"manoeuvre", c.manoeuvre}, {"overlay", c.truth_overlay}, {"seed", c.seed}, {"setup", c.setup},
-          {"log_rate", c.log_rate},   {"noise_scale", c.noise_scale}};
+  json j{{"id", c.id},         {"category", c.category},    {"truth", c.truth}, {"magnitude", c.magnitude},
+         {"manoeuvre", c.manoeuvre}, {"overlay", c.truth_overlay}, {"seed", c.seed}, {"setup", c.setup},
+         {"log_rate", c.log_rate},   {"noise_scale", c.noise_scale}};
+  // The fields of the groups (benchmark_cases.h), written only where a case has them.
+  if (!c.group.empty()) j["group"] = c.group;
+  if (!c.truth_form.empty()) j["truth_form"] = c.truth_form;
+  if (!c.truths.empty()) {
+    j["truths"] = json::array();
+    for (const auto& t : c.truths) j["truths"].push_back({{"effect", t.effect}, {"form", t.form}});
+  }
+  if (!c.sensor_character.empty()) {
+    json characters = json::object();
+    for (const auto& [column, ch] : c.sensor_character) {
+      characters[column] = {{"quantum", ch.quantum}, {"offset", ch.offset}, {"hold", ch.hold}, {"ar", ch.ar},
+                            {"sigma", ch.sigma}};
+    }
+    j["sensor_character"] = characters;
+  }
+  return j;
 }
 
 BenchmarkCase caseFromTruth(const json& t) {
@@ -89,6 +113,22 @@ BenchmarkCase caseFromTruth(const json& t) {
   if (t.contains("setup")) c.setup = t["setup"].get<std::vector<std::string>>();
   if (t.contains("log_rate")) c.log_rate = t["log_rate"];
   if (t.contains("noise_scale")) c.noise_scale = t["noise_scale"];
+  c.group = t.value("group", std::string());
+  c.truth_form = t.value("truth_form", std::string());
+  if (t.contains("truths")) {
+    for (const auto& e : t["truths"]) c.truths.push_back({e["effect"].get<std::string>(), e.value("form", std::string())});
+  }
+  if (t.contains("sensor_character")) {
+    for (const auto& [column, ch] : t["sensor_character"].items()) {
+      ChannelCharacter character;
+      character.quantum = ch.value("quantum", 0.0);
+      character.offset = ch.value("offset", 0.0);
+      character.hold = ch.value("hold", 1);
+      character.ar = ch.value("ar", 0.0);
+      character.sigma = ch.value("sigma", 0.0);
+      c.sensor_character[column] = character;
+    }
+  }
   return c;
 }
 
@@ -210,55 +250,75 @@ double median(std::vector<double> v) {
   return n == 0 ? 0.0 : (n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
-int score(const std::string& dir) {
-  const json truth = readJson(dir + "/truth.json");
+/// Whether a verdict's form names the truth's: equal to it, or among the forms the logs cannot tell apart
+/// ("aerodynamic or road_bank" names both). An empty truth form accepts any.
+bool formNames(const std::string& truth_form, const std::string& form) {
+  if (truth_form.empty()) return true;
+  for (std::size_t begin = 0;;) {
+    const std::size_t end = form.find(" or ", begin);
+    if (form.substr(begin, end == std::string::npos ? std::string::npos : end - begin) == truth_form) return true;
+    if (end == std::string::npos) return false;
+    begin = end + 4;
+  }
+}
+
+bool names(const TruthEffect& truth, const std::string& effect, const std::string& form) {
+  return effect == truth.effect && formNames(truth.form, form);
+}
+
+std::string label(const std::string& effect, const std::string& form) {
+  return form.empty() ? effect : effect + " (" + form + ")";
+}
+
+/// A case with its report.
+struct ScoredCase {
+  BenchmarkCase c;
+  GapReport r;
+
+  /// The verdict names the (one) truth, in its form where the truth has one.
+  bool right() const {
+    for (const auto& t : c.truthEffects()) {
+      if (names(t, r.verdict.effect, r.verdict.form)) return true;
+    }
+    return false;
+  }
+  /// Every truth is among verdict.effects.
+  bool allNamed() const {
+    for (const auto& t : c.truthEffects()) {
+      bool found = false;
+      for (const auto& e : r.verdict.effects) found = found || names(t, e.effect, e.form);
+      if (!found) return false;
+    }
+    return true;
+  }
+  /// The held-out shrink of what the verdict names (all its effects when it names several).
+  double shrink() const { return r.verdict.effects.size() > 1 ? r.verdict.combined_shrink : r.verdict.shrink; }
+  /// The closed-loop replay's shrink (how far), NaN when it did not run.
+  double howFarShrink() const {
+    return r.how_far.before > 0.0 ? 1.0 - r.how_far.after / r.how_far.before : std::numeric_limits<double>::quiet_NaN();
+  }
+  std::string verdictLabel() const { return label(r.verdict.effect, r.verdict.form); }
+  std::string truthLabel() const {
+    std::string out;
+    for (const auto& t : c.truthEffects()) out += (out.empty() ? "" : " + ") + label(t.effect, t.form);
+    return out;
+  }
+};
+
+std::string percent(double v) {
+  if (!std::isfinite(v)) return "-";
+  char text[32];
+  std::snprintf(text, sizeof(text), "%.1f %%", 100.0 * v);
+  return text;
+}
+
+std::string ratio(int n, int of) { return of == 0 ? "-" : std::to_string(n) + " / " + std::to_string(of); }
+
+/// The confusion matrix of one-effect logs: rows the hidden effect (and none), columns the verdict, the 14
+/// candidate names numbered so that the columns stay narrow.
+void printConfusion(const std::map<std::string, std::map<std::string, int>>& confusion) {
   std::vector<std::string> labels = candidateEffectNames();
   labels.push_back("unexplained");
-  std::map<std::string, std::map<std::string, int>> confusion;
-  int in_list = 0, correct = 0, none = 0, false_alarms = 0, outside = 0, outside_unexplained = 0;
-  std::vector<double> shrinks, ceilings;
-  std::vector<std::string> out_of_list, per_log;
-  std::vector<std::string> misses;
-  for (const auto& t : truth) {
-    const std::string id = t["id"];
-    const std::string path = dir + "/reports/" + id + "/report.json";
-    std::ifstream probe(path);
-    if (!probe) continue;
-    const GapReport r = readGapReportJson(path);
-    const std::string verdict = r.verdict.effect;
-    const std::string category = t["category"];
-    const std::string effect = t["truth"];
-    if (category == "in_list") {
-      ++in_list;
-      confusion[effect][verdict]++;
-      const double ceiling = truthShrink(dir, id);
-      char line[256];
-      std::snprintf(line, sizeof(line), "  %-40s -> %-20s shrink %5.1f %%  truth model %5.1f %%", id.c_str(),
-                    verdict.c_str(), 100.0 * r.verdict.shrink, 100.0 * ceiling);
-      per_log.push_back(line);
-      if (verdict == effect) {
-        ++correct;
-        shrinks.push_back(r.verdict.shrink);
-        if (std::isfinite(ceiling)) ceilings.push_back(ceiling);
-      } else {
-        misses.push_back(id + " -> " + verdict);
-      }
-    } else if (category == "none") {
-      ++none;
-      confusion["none"][verdict]++;
-      if (verdict != "unexplained") {
-        ++false_alarms;
-        misses.push_back(id + " -> " + verdict + " (false alarm)");
-      }
-    } else {
-      ++outside;
-      if (verdict == "unexplained") ++outside_unexplained;
-      char line[256];
-      std::snprintf(line, sizeof(line), "  %-36s -> %-20s conf %.2f shrink %5.1f %%  where %s", id.c_str(), verdict.c_str(),
-                    r.verdict.confidence, 100.0 * r.verdict.shrink, r.where.subsystem.c_str());
-      out_of_list.push_back(line);
-    }
-  }
   std::printf("Confusion matrix (rows: hidden effect; columns: verdict)\n%-21s", "");
   for (std::size_t j = 0; j < labels.size(); ++j) std::printf(" %3zu", j + 1);
   std::printf("\n");
@@ -266,8 +326,9 @@ int score(const std::string& dir) {
   rows.push_back("none");
   for (const auto& row : rows) {
     std::printf("%-21s", row.c_str());
+    const auto r = confusion.find(row);
     for (const auto& col : labels) {
-      const int n = confusion[row][col];
+      const int n = r == confusion.end() || !r->second.count(col) ? 0 : r->second.at(col);
       std::printf(" %3s", n ? std::to_string(n).c_str() : ".");
     }
     std::printf("\n");
@@ -275,6 +336,52 @@ int score(const std::string& dir) {
   std::printf("columns: ");
   for (std::size_t j = 0; j < labels.size(); ++j) std::printf("%zu=%s ", j + 1, labels[j].c_str());
   std::printf("\n\n");
+}
+
+/// The family's first table (the cases without a group): what the scorer printed before the groups.
+void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& scored) {
+  std::map<std::string, std::map<std::string, int>> confusion;
+  int in_list = 0, correct = 0, none = 0, false_alarms = 0, outside = 0, outside_unexplained = 0;
+  std::vector<double> shrinks, ceilings;
+  std::vector<std::string> out_of_list, per_log;
+  std::vector<std::string> misses;
+  for (const ScoredCase& s : scored) {
+    const std::string& id = s.c.id;
+    const GapReport& r = s.r;
+    // The verdict's form is printed where the truth names one (a sensor error's channel).
+    const std::string verdict = s.c.truth_form.empty() ? r.verdict.effect : s.verdictLabel();
+    if (s.c.category == "in_list") {
+      ++in_list;
+      confusion[s.c.truth][r.verdict.effect]++;
+      const double ceiling = truthShrink(dir, id);
+      char line[256];
+      std::snprintf(line, sizeof(line), "  %-40s -> %-20s shrink %5.1f %%  truth model %5.1f %%", id.c_str(),
+                    verdict.c_str(), 100.0 * r.verdict.shrink, 100.0 * ceiling);
+      per_log.push_back(line);
+      if (s.right()) {
+        ++correct;
+        shrinks.push_back(r.verdict.shrink);
+        if (std::isfinite(ceiling)) ceilings.push_back(ceiling);
+      } else {
+        misses.push_back(id + " -> " + verdict);
+      }
+    } else if (s.c.category == "none") {
+      ++none;
+      confusion["none"][r.verdict.effect]++;
+      if (r.verdict.effect != "unexplained") {
+        ++false_alarms;
+        misses.push_back(id + " -> " + verdict + " (false alarm)");
+      }
+    } else {
+      ++outside;
+      if (r.verdict.effect == "unexplained") ++outside_unexplained;
+      char line[256];
+      std::snprintf(line, sizeof(line), "  %-36s -> %-20s conf %.2f shrink %5.1f %%  where %s", id.c_str(), verdict.c_str(),
+                    r.verdict.confidence, 100.0 * r.verdict.shrink, r.where.subsystem.c_str());
+      out_of_list.push_back(line);
+    }
+  }
+  printConfusion(confusion);
   std::printf("top-1 accuracy (in-list effects):      %d / %d = %.1f %%   (target >= 90 %%)\n", correct, in_list,
               in_list ? 100.0 * correct / in_list : 0.0);
   std::printf("median held-out shrink when right:     %.1f %%   (target >= 80 %%)\n", 100.0 * median(shrinks));
@@ -294,6 +401,145 @@ int score(const std::string& dir) {
     std::printf("\nMisses:\n");
     for (const auto& m : misses) std::printf("  %s\n", m.c_str());
   }
+}
+
+/// One group's table, as Markdown for docs/gap.md, then each log.
+void printGroupTable(const std::string& group, const std::vector<ScoredCase>& scored) {
+  int single = 0, single_right = 0, several = 0, one_of = 0, both = 0, none = 0, none_unexplained = 0, outside = 0,
+      outside_unexplained = 0;
+  std::vector<double> shrinks, how_far;
+  std::vector<std::string> lines;
+  for (const ScoredCase& s : scored) {
+    const bool right = s.right();
+    const bool unexplained = s.r.verdict.effect == "unexplained";
+    std::string mark;
+    if (s.c.category == "none") {
+      ++none;
+      none_unexplained += unexplained;
+      mark = unexplained ? "ok" : "FALSE ALARM";
+    } else if (s.c.category == "out_of_list") {
+      ++outside;
+      outside_unexplained += unexplained;
+      mark = unexplained ? "ok" : "named";
+    } else {
+      if (s.c.truths.size() > 1) {
+        ++several;
+        one_of += right;
+        both += right && s.allNamed();
+        mark = right ? (s.allNamed() ? "both named" : "one of them") : "miss";
+      } else {
+        ++single;
+        single_right += right;
+        mark = right ? "right" : "miss";
+      }
+      if (right) {
+        shrinks.push_back(s.shrink());
+        if (std::isfinite(s.howFarShrink())) how_far.push_back(s.howFarShrink());
+      }
+    }
+    std::string named;
+    for (const auto& e : s.r.verdict.effects) named += (named.empty() ? "" : ", ") + label(e.effect, e.form);
+    const std::string named_text = s.r.verdict.effects.size() > 1 ? "  named: " + named : "";
+    char line[768];
+    std::snprintf(line, sizeof(line), "  %-56s %-44s -> %-34s %-12s shrink %s, how far %s%s", s.c.id.c_str(),
+                  s.truthLabel().c_str(), s.verdictLabel().c_str(), mark.c_str(), percent(s.shrink()).c_str(),
+                  percent(s.howFarShrink()).c_str(), named_text.c_str());
+    lines.push_back(line);
+  }
+  std::printf("\n=== %s (%zu logs) ===\n\n| | measured |\n|---|---|\n", group.c_str(), scored.size());
+  if (single) std::printf("| top-1, one in-list effect (effect, and form where one is set) | %s |\n", ratio(single_right, single).c_str());
+  if (several) {
+    std::printf("| several effects at once: the verdict is one of them | %s |\n", ratio(one_of, several).c_str());
+    std::printf("| several effects at once: all named (verdict.effects) | %s |\n", ratio(both, several).c_str());
+  }
+  if (none) std::printf("| no-effect logs judged `unexplained` | %s |\n", ratio(none_unexplained, none).c_str());
+  if (outside) std::printf("| out-of-list logs judged `unexplained` | %s |\n", ratio(outside_unexplained, outside).c_str());
+  if (single + several) {
+    std::printf("| median held-out shrink when right | %s |\n", shrinks.empty() ? "-" : percent(median(shrinks)).c_str());
+    std::printf("| median closed-loop (how far) shrink when right | %s |\n", how_far.empty() ? "-" : percent(median(how_far)).c_str());
+  }
+  std::printf("\n");
+  for (const auto& line : lines) std::printf("%s\n", line.c_str());
+}
+
+/// The whole family against its targets (issue 46 item 7): one in-list effect (all of them, and the
+/// sensor errors apart), a sensor error with a physical effect, no-effect and out-of-list logs.
+void printOverall(const std::vector<ScoredCase>& all) {
+  int single = 0, single_right = 0, sensor = 0, sensor_right = 0, several = 0, one_of = 0, both = 0, none = 0,
+      none_unexplained = 0, outside = 0, outside_unexplained = 0;
+  for (const ScoredCase& s : all) {
+    const bool unexplained = s.r.verdict.effect == "unexplained";
+    if (s.c.category == "none") {
+      ++none;
+      none_unexplained += unexplained;
+    } else if (s.c.category == "out_of_list") {
+      ++outside;
+      outside_unexplained += unexplained;
+    } else if (s.c.truthEffects().size() > 1) {
+      ++several;
+      one_of += s.right();
+      both += s.right() && s.allNamed();
+    } else {
+      ++single;
+      single_right += s.right();
+      if (isSensorEffect(s.c.truth)) {
+        ++sensor;
+        sensor_right += s.right();
+      }
+    }
+  }
+  auto share = [](int n, int of) { return of ? percent(static_cast<double>(n) / of) : std::string("-"); };
+  std::printf("\n=== The whole family (%zu logs) ===\n\n| | measured | target |\n|---|---|---|\n", all.size());
+  std::printf("| top-1, one in-list effect | %s = %s | >= 90 %% |\n", ratio(single_right, single).c_str(),
+              share(single_right, single).c_str());
+  std::printf("| of which sensor errors (effect and channel) | %s = %s | |\n", ratio(sensor_right, sensor).c_str(),
+              share(sensor_right, sensor).c_str());
+  std::printf("| of which physical effects | %s = %s | |\n", ratio(single_right - sensor_right, single - sensor).c_str(),
+              share(single_right - sensor_right, single - sensor).c_str());
+  std::printf("| two at once: the verdict is one of them | %s | |\n", ratio(one_of, several).c_str());
+  std::printf("| two at once: both named (verdict.effects) | %s | |\n", ratio(both, several).c_str());
+  std::printf("| no-effect logs judged `unexplained` | %s = %s | >= 95 %% |\n", ratio(none_unexplained, none).c_str(),
+              share(none_unexplained, none).c_str());
+  std::printf("| out-of-list logs judged `unexplained` | %s | |\n", ratio(outside_unexplained, outside).c_str());
+}
+
+int score(const std::string& dir) {
+  const json truth = readJson(dir + "/truth.json");
+  std::vector<ScoredCase> family;
+  std::map<std::string, std::vector<ScoredCase>> groups;
+  std::vector<std::string> group_order = independentGroupNames();
+  for (const auto& t : truth) {
+    const std::string id = t["id"];
+    const std::string path = dir + "/reports/" + id + "/report.json";
+    std::ifstream probe(path);
+    if (!probe) continue;
+    ScoredCase s{caseFromTruth(t), readGapReportJson(path)};
+    if (s.c.group.empty()) {
+      family.push_back(std::move(s));
+    } else {
+      if (std::find(group_order.begin(), group_order.end(), s.c.group) == group_order.end()) group_order.push_back(s.c.group);
+      groups[s.c.group].push_back(std::move(s));
+    }
+  }
+  if (!family.empty() || groups.empty()) printFamilyTable(dir, family);
+  if (groups.empty()) return 0;
+  std::printf("\n\nThe groups, each in its own table: right = the verdict names the hidden effect, and "
+              "its form where the case sets one; how far = 1 - how_far.after / how_far.before.\n");
+  std::map<std::string, std::map<std::string, int>> confusion;
+  for (const auto& name : group_order) {
+    const auto it = groups.find(name);
+    if (it == groups.end()) continue;
+    printGroupTable(name, it->second);
+    for (const ScoredCase& s : it->second) {
+      if (s.c.category == "none") confusion["none"][s.r.verdict.effect]++;
+      else if (s.c.category == "in_list" && s.c.truths.size() <= 1) confusion[s.c.truth][s.r.verdict.effect]++;
+    }
+  }
+  std::printf("\nThe groups' one-effect and no-effect logs:\n");
+  printConfusion(confusion);
+  std::vector<ScoredCase> all = family;
+  for (const auto& [name, cases] : groups) all.insert(all.end(), cases.begin(), cases.end());
+  printOverall(all);
   return 0;
 }
 

@@ -1,0 +1,26 @@
+#pragma once
+/// The groups of the independent benchmark family, each scored in its own table (BenchmarkCase::group;
+/// docs/gap.md, "Sensor errors in the independent family"). One group so far, issue 46 item 7:
+///
+///   sensor errors   a yaw-rate, steering-angle and lateral-acceleration offset, a heading mount, a yaw-rate
+///                   and a steering-angle latency, a gyro scale and a steering ratio, each on two runs (once
+///                   with white noise, once through a vehicle bus's quantised, held or coloured channels;
+///                   other roads, speeds and gains than the candidates' family); no-effect logs through such
+///                   buses, and two whose only "error" is a coarse step or a slow hold (truth: unexplained);
+///                   four sensor errors each together with a physical effect (both should be named)
+///
+/// Seeds from 20001 on: none of these logs is one anything was tuned on.
+#include <string>
+#include <vector>
+
+#include "gap_benchmark/benchmark_cases.h"
+
+namespace lane_keeping {
+
+/// The group names, in the order the scorer prints their tables.
+const std::vector<std::string>& independentGroupNames();
+
+/// The cases of the groups above (independentCases() appends them to the family's first cases).
+std::vector<BenchmarkCase> independentGroupCases();
+
+}  // namespace lane_keeping
