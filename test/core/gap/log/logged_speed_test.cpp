@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 
 #include <yaml-cpp/yaml.h>
@@ -63,6 +64,7 @@ TEST(LoggedSpeed, ALogOfTheSpeedOfGIsConvertedToVOfEq1) {
   }
   // Measured: the speed of G departs from V by 0.017 m/s; converted, with sigma1 from the differentiated
   // pose, by 2.2e-4 m/s.
+  std::printf("speed of G off V by %.3g m/s, converted %.3g\n", raw, worst);
   EXPECT_GT(raw, 0.01);
   EXPECT_LT(worst, 0.05 * raw);
   // Converted once: a log that holds V already is left as it is.
@@ -139,6 +141,7 @@ TEST(LoggedSpeed, AProfileInTimeFromTheLoggedSpeed) {
   const SpeedProfile followed(points), truth(c.vehicle.speed_profile);
   double worst = 0.0;
   for (double t = 0.0; t <= 14.0; t += 0.01) worst = std::max(worst, std::fabs(followed.at(t).speed - truth.at(t).speed));
+  std::printf("profile from the log off the truth by %.3g m/s\n", worst);
   EXPECT_LT(worst, 3e-3);  // measured 2.9e-4 m/s
   // The closed loops take it; a constant speed leaves the configuration as it was.
   const SimConfig followed_config = withLoggedSpeed(tightLane(), *prepared.log);
