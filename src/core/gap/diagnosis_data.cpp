@@ -6,6 +6,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/gap/log/logged_speed.h"
 #include "lane_keeping/gap/replay/excitation_clock.h"
 #include "lane_keeping/gap/replay/subsystem_replay.h"
 
@@ -17,7 +18,11 @@ std::vector<RunData> prepareRuns(const std::vector<GapRun>& runs) {
   for (const GapRun& run : runs) {
     std::vector<InputCheck> checks = inputChecks(run.log, run.config);
     refuseImplausibleLog(checks);
-    auto log = std::make_shared<LogSignals>(run.log);
+    std::shared_ptr<const LogSignals> log = std::make_shared<LogSignals>(run.log);
+    // The replays need V of eq 1; a speed of G (lk_simulate's, a bus's) is converted with the run's geometry.
+    if (holdsCentreOfGravitySpeed(run.log)) {
+      log = std::make_shared<LogSignals>(withFrontAxleSpeed(*log, run.config.vehicle));
+    }
     SimConfig config = run.config;
     if (run.initial_from_log) {
       // (sigma1 from the logged positions; a log without them starts at 0, the chassis replay estimating it)

@@ -24,7 +24,10 @@ struct GapLog {
   std::vector<double> delta;      ///< measured front-wheel steering angle [rad]
   std::vector<double> delta_des;  ///< desired steering angle as the tracker produced it [rad]
   std::vector<double> torque;     ///< steering torque command M_S [N m]
-  std::vector<double> v;          ///< optional: speed [m/s] (empty if absent)
+  std::vector<double> v;          ///< optional: speed [m/s] (empty if absent), of the point speed_of says
+  /// which speed v holds: the centre of gravity's (lk_simulate's, the nodes', a bus's) unless the log
+  /// mapping says `v: {column: ..., speed_of: front_axle}` (V of Beregi eq 1); logged_speed.h converts
+  LoggedSpeed speed_of = LoggedSpeed::kCentreOfGravity;
   /// optional: lateral velocity of G in the body frame [m/s] (sigma1 of Beregi eq 1, left positive), as an
   /// INS or an optical sensor measures it; without it the replays differentiate the pose (log_signals.h)
   std::vector<double> vy;

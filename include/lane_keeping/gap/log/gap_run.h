@@ -24,7 +24,7 @@ struct GapRun {
 };
 
 /// Whether `key` may appear in a scenario: path.*, simulation.initial.*, simulation.{duration,
-/// log_rate, name, description}, vehicle.{speed, speed_variation, speed_wavelength},
+/// log_rate, name, description}, vehicle.{speed, speed_variation, speed_wavelength, speed_profile},
 /// tracker.excitation_*. Everything else describes the car or its controllers and belongs to the
 /// nominal configuration, which the diagnosis tests.
 bool isScenarioKey(const std::string& key);

@@ -13,6 +13,7 @@
 ///       x:      {column: east}
 ///       yaw_rate: {column: yaw, shift: 0.2}            # logged 0.2 s late (column_shift.h)
 ///       vy:     {column: lateral_velocity}             # optional: lateral velocity of G, body frame
+///       v:      {column: speed, speed_of: cg}          # which speed: cg (default) or front_axle (V of eq 1)
 ///
 /// A schema column not listed keeps its own name; a listed one is read only from its mapped column.
 #include <map>
@@ -23,6 +24,13 @@ class Node;
 }
 
 namespace lane_keeping {
+
+/// Which speed a log's `v` column holds (`v: {column: ..., speed_of: cg | front_axle}`). The diagnosis's
+/// replays need V of Beregi eq 1 and convert a centre-of-gravity speed into it (gap/log/logged_speed.h).
+enum class LoggedSpeed {
+  kCentreOfGravity,  ///< `cg` (the default): |velocity of G|, what lk_simulate and the nodes log, a bus or GNSS gives
+  kFrontAxle,        ///< `front_axle`: V of eq 1, the front axle's speed along its wheel
+};
 
 struct ColumnMapping {
   std::string column;      ///< the log's column name
@@ -35,6 +43,8 @@ struct ColumnMapping {
   /// psi only: the column is the course over ground (the direction the car moves, a GNSS receiver's
   /// heading), not where the body points: it differs by the body slip angle.
   bool course = false;
+  /// v only: which speed the column holds (`speed_of: cg | front_axle`).
+  LoggedSpeed speed_of = LoggedSpeed::kCentreOfGravity;
   std::string location;    ///< file:line of the entry, for messages
 };
 

@@ -13,7 +13,9 @@
 namespace lane_keeping {
 
 /// `config` started at the log's first sample: pose, yaw rate, steering angle and rate from the log,
-/// sigma1 = `sigma1_0`; run for `duration` seconds (clamped to the log's span), logged at `log_rate`.
+/// sigma1 = `sigma1_0`; run for `duration` seconds (clamped to the log's span), logged at `log_rate`; a
+/// logged speed that varies followed in time (withLoggedSpeed: the closed-loop replay, the bounded-loop
+/// checks and how far drive as the car drove).
 SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double sigma1_0, double duration,
                                 double log_rate);
 

@@ -50,9 +50,12 @@ bool inSegments(double t, const std::vector<TimeSegment>& segments);
 ReplayTrace makeTrace(const std::string& name, const std::vector<double>& measured_all);
 
 /// The vehicle model a replay integrates: the configuration's, except that a log whose speed varies
-/// (LogSignals::speedVaries) drives the speed itself (imposeLoggedSpeed), so the configured profile is off.
+/// (LogSignals::speedVaries) drives the speed itself (imposeLoggedSpeed), so the configured profiles (along
+/// the road, in time) are off.
 SingleTrackModel replayModel(const SimConfig& config, const LogSignals& log);
-/// Sets V and dV/dt at `t` from the log into `model` when the log's speed varies (else nothing).
+/// Sets V and dV/dt at `t` from the log into `model` when the log's speed varies; else from the
+/// configuration's vehicle.speed_profile at t - log.start() if it has one (the run's t = 0 is the log's
+/// start, as in the closed-loop replay), else nothing.
 void imposeLoggedSpeed(SingleTrackModel& model, const LogSignals& log, double t, std::size_t* hint);
 
 /// Shooting intervals [a, b) covering the segments.

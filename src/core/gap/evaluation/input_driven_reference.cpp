@@ -79,7 +79,7 @@ GapLog inputDrivenReferenceLog(const SimConfig& nominal, const LogSignals& log) 
   };
   const double t0 = log.start();
   fromLog(0);
-  const double speed = log.fastestSpeed(nominal.vehicle.speed);
+  const double speed = log.fastestSpeed(nominal.vehicle.fastestSpeed());
   const double step = std::min({0.002, tireStep(model.frontTire(), speed), tireStep(model.rearTire(), speed)});
   Rk4 rk4(n);
   Eigen::VectorXd q_dot(n);
@@ -121,6 +121,7 @@ GapLog inputDrivenReferenceLog(const SimConfig& nominal, const LogSignals& log) 
   }
   if (real.hasSteeringRate()) out.delta_rate = rate;
   out.v = smoothedDerivative(t, real.v, 0.1, 0);  // the car's speed, without the sensor's noise
+  out.speed_of = real.speed_of;                   // (V of eq 1 once prepared: logged_speed.h)
   out.torque = real.torque;
   out.delta_des = real.delta_des;
   return out;

@@ -7,6 +7,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/time.h"
+#include "lane_keeping/gap/log/logged_speed.h"
 #include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {
@@ -61,7 +62,7 @@ SensorNoise estimatedNoise(const LogSignals& log) {
 }
 
 GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log) {
-  SimConfig c = nominal;
+  SimConfig c = withLoggedSpeed(nominal, log);  // driving as the car drove, when its speed varies
   const double step = log.log().medianStep();
   // At most a row per plant step (SimulationParams::validate): a log sampled faster than the plant steps
   // is compared with the reference at the plant's rate.
@@ -75,6 +76,19 @@ GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log) {
     throw LaneKeepingError("noise reference for " + log.log().source + ": the nominal closed loop " + run.message);
   }
   GapLog out = gapLogFromRows(run.rows, log.log().source + " (noise reference)");
+  // v as the log it stands for holds it: once prepared, V of eq 1 (logged_speed.h), here from the simulated
+  // state itself (gapLogFromRows wrote the speed of G and kept the rows whose values are finite).
+  if (log.log().speed_of == LoggedSpeed::kFrontAxle) {
+    const double b = c.vehicle.cgToFrontAxle();
+    std::size_t row = 0;
+    for (const LogRow& r : run.rows) {
+      if (row < out.t.size() && r.t == out.t[row]) {
+        const VehicleStateSample& s = r.state;
+        out.v[row++] = frontAxleSpeed(s.speed, s.sigma1, s.sigma2, s.delta, b);
+      }
+    }
+    out.speed_of = LoggedSpeed::kFrontAxle;
+  }
   for (double& t : out.t) t += log.start();
   // The reference holds the columns the log holds, in the same units state (a partial log's replays
   // are the ones its columns allow).

@@ -154,6 +154,7 @@ GapLog finishLog(const RowNaming& naming, const std::vector<ColumnSpec>& specs, 
       offset = it->second.offset;
       if (it->second.unscaled) log.unscaled.insert(name);
       if (it->second.course) log.psi_is_course = true;
+      if (name == std::string("v")) log.speed_of = it->second.speed_of;
     }
     if (scale == 1.0 && offset == 0.0) continue;
     for (RawRow& r : rows) r.values[p] = scale * r.values[p] + offset;
@@ -320,6 +321,7 @@ GapLog GapLog::slice(std::size_t begin, std::size_t end) const {
   out.unscaled = unscaled;
   out.mapping = mapping;
   out.psi_is_course = psi_is_course;
+  out.speed_of = speed_of;
   for (const ColumnSpec& spec : columnSpecs()) {
     const std::vector<double>& from = this->*spec.member;
     if (from.empty()) continue;  // absent optional column stays absent

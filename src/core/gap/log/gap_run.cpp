@@ -24,9 +24,9 @@ bool isScenarioKey(const std::string& key) {
   for (const char* p : prefixes) {
     if (startsWith(key, p)) return true;
   }
-  static const std::array<const char*, 7> keys{"simulation.duration", "simulation.log_rate", "simulation.name",
+  static const std::array<const char*, 8> keys{"simulation.duration", "simulation.log_rate", "simulation.name",
                                                "simulation.description", "vehicle.speed", "vehicle.speed_variation",
-                                               "vehicle.speed_wavelength"};
+                                               "vehicle.speed_wavelength", "vehicle.speed_profile"};
   for (const char* k : keys) {
     if (key == k) return true;
   }
@@ -36,6 +36,7 @@ bool isScenarioKey(const std::string& key) {
 std::string scenarioKeysDescription() {
   return "path.*, simulation.initial.*, simulation.duration, simulation.log_rate, simulation.name, "
          "simulation.description, vehicle.speed, vehicle.speed_variation, vehicle.speed_wavelength, "
+         "vehicle.speed_profile, "
          "tracker.excitation_*";
 }
 

@@ -492,8 +492,8 @@ class Checker {
       const double hi = *std::max_element(log_.v.begin(), log_.v.end());
       add("v", "speed",
           format("the logged speed (median %.3g, %.3g to %.3g m/s) is %.0f %% off vehicle.speed = %.3g m/s: the replays "
-                 "follow a logged speed that varies, but the closed-loop runs (noise-only null, closed-loop checks, "
-                 "how far) drive at vehicle.speed; set it in the run's scenario",
+                 "and the closed-loop runs (noise-only null, closed-loop checks, how far) follow a logged speed that "
+                 "varies, but drive at vehicle.speed where it does not; set it in the run's scenario",
                  logged, lo, hi, 100.0 * (logged / configured - 1.0), configured));
     }
   }

@@ -136,8 +136,17 @@ LogMapping logMappingFromYaml(const YAML::Node& section, const std::string& file
               fail(key + ".course", at(file, field.second), "must be true or false");
             }
           }
+          else if (f == "speed_of") {
+            if (schema != "v") fail(key + ".speed_of", at(file, field.first), "applies to v only (which speed the column holds)");
+            const std::string point = field.second.IsScalar() ? field.second.Scalar() : "";
+            if (point == "cg") c.speed_of = LoggedSpeed::kCentreOfGravity;
+            else if (point == "front_axle") c.speed_of = LoggedSpeed::kFrontAxle;
+            else fail(key + ".speed_of", at(file, field.second),
+                      "= '" + YAML::Dump(field.second) + "': which speed v holds, cg (the centre of gravity's, the "
+                      "default) or front_axle (V of Beregi eq 1, the front axle's speed along its wheel)");
+          }
           else if (f == "unit" || f == "note") continue;  // documentation only
-          else fail(key + "." + f, at(file, field.first), "is not a column mapping key (column, scale, offset, unscaled, shift, course)");
+          else fail(key + "." + f, at(file, field.first), "is not a column mapping key (column, scale, offset, unscaled, shift, course, speed_of)");
         }
       } else {
         fail(key, at(file, item.second), "must be a column name or {column: NAME, scale: A, offset: B}");

@@ -94,7 +94,7 @@ SubsystemReplay replayChassis(const SimConfig& config, const LogSignals& log, co
   // without, (sigma1, yaw rate), the yaw rate's its noise. Where the log does not measure sigma1 (no pose,
   // or a course for a heading) its prior is a tenth of the speed wide: a body slip angle of 6 degrees.
   const std::vector<int> nuisance = pose ? std::vector<int>{3, 2, 1} : std::vector<int>{3, 4};
-  const double fastest_speed = log.fastestSpeed(config.vehicle.speed);
+  const double fastest_speed = log.fastestSpeed(config.vehicle.fastestSpeed());
   const double unmeasured_sigma1 = 0.1 * std::max(1.0, fastest_speed);
   const std::vector<double> priors =
       pose ? std::vector<double>{course ? unmeasured_sigma1 : std::max(log.noise(C::kSigma1), 1e-6),

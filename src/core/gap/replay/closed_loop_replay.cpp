@@ -5,6 +5,7 @@
 #include <exception>
 #include <optional>
 
+#include "lane_keeping/gap/log/logged_speed.h"
 #include "lane_keeping/gap/log/sensor_correction.h"
 #include "lane_keeping/gap/replay/replay_shooting.h"
 #include "lane_keeping/sim/closed_loop.h"
@@ -32,7 +33,7 @@ SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double 
   // offset (excitation_clock.h).
   config.tracker.excitation_clock_offset += t0;
   config.simulation.log_rate = std::min(log_rate, 1.0 / config.simulation.step);  // a row per plant step at most
-  return config;
+  return withLoggedSpeed(std::move(config), log);  // a speed that varies is followed in time, as the car drove
 }
 
 ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log, double sigma1_0) {

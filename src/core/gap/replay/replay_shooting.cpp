@@ -68,11 +68,15 @@ SingleTrackModel replayModel(const SimConfig& config, const LogSignals& log) {
   if (!log.speedVaries()) return createVehicleModel(config);
   SimConfig c = config;
   c.vehicle.speed_variation = 0.0;
+  c.vehicle.speed_profile = {};
   return createVehicleModel(c);
 }
 
 void imposeLoggedSpeed(SingleTrackModel& model, const LogSignals& log, double t, std::size_t* hint) {
-  if (!log.speedVaries()) return;
+  if (!log.speedVaries()) {
+    model.followSpeedProfile(t - log.start());  // a scenario's profile in time, if any: the run's t = 0 is the log's start
+    return;
+  }
   const LogSignals::Position here = log.positionAt(t, hint);
   model.setSpeed(log.at(LogSignals::kSpeed, here), log.at(LogSignals::kSpeedRate, here));
 }

@@ -143,7 +143,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
   ReplayTrace trace = makeTrace("delta", log.samples(C::kDelta));
   Rk4 rk4(n);
   const double tire_step =
-      std::min(options.steering_step, tireStep(model.frontTire(), log.fastestSpeed(config.vehicle.speed)));
+      std::min(options.steering_step, tireStep(model.frontTire(), log.fastestSpeed(config.vehicle.fastestSpeed())));
   const auto& times = log.times();
   // Stiff steering systems need a shorter step: RK4 is stable up to ~2.8 / (fastest rate).
   double step = tire_step;
