@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <limits>
 #include <memory>
 #include <set>
 #include <string>
@@ -158,6 +159,11 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   report.where = whereAnalysis(nominal_all, everything, options.upstream_share, artifacts);
   const double gap_before = gapOf(nominal_held.scores, {});
   report.detection = detectGap(nominal_train.scores, nominal_held.scores, null, options);
+  // An onset is where a gap sets in: with none detected, the excess is noise and so is its "onset".
+  if (!report.detection.heldout.detected && !report.detection.training.detected) {
+    report.where.onsets.clear();
+    report.where.onset = std::numeric_limits<double>::quiet_NaN();
+  }
   report.wall_seconds.emplace_back("where", secondsSince(where_start));
 
   // ---- 3. Which: every candidate fitted on training data, scored on held-out data (candidate_fit.h)

@@ -54,6 +54,7 @@ GapReport diagnoseFromOnset(const SimConfig& nominal, const std::vector<GapRun>&
                         "); on the log from t = " + seconds(onset - kOnsetLeadIn) + ": " + part.verdict.reason;
   part.notes.insert(part.notes.begin(), sets_in + ": diagnosed on the log from t = " + seconds(onset - kOnsetLeadIn));
   part.where.onset = onset;
+  part.where.onsets = whole.where.onsets;  // in the whole log's time, as `onset`
   std::vector<std::pair<std::string, double>> stages;
   for (const auto& [stage, secs] : whole.wall_seconds) stages.emplace_back("whole log: " + stage, secs);
   stages.insert(stages.end(), part.wall_seconds.begin(), part.wall_seconds.end());

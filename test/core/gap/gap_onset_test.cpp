@@ -1,13 +1,16 @@
 // A gap that sets in mid-run (gap_onset.h): a crosswind from x = 200 m of a 20 s run at 15 m/s is
 // located from about t = 13.3 s, the whole-log fit of a constant force explains too little of it, and
-// the diagnosis from the onset names it; the same crosswind from the start has no onset.
+// the diagnosis from the onset names it; the same crosswind from the start has no onset. With a
+// training and a held-out run (pair mode), each run's onset is reported in its own time.
 #include <gtest/gtest.h>
 
 #include <cmath>
 
 #include "gap_benchmark/benchmark_cases.h"
+#include "lane_keeping/config/timed_change.h"
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/gap_onset.h"
+#include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {
 namespace {
@@ -51,6 +54,94 @@ TEST(GapOnset, TheRunFromTheOnsetKeepsALeadInAndTakesItsStateFromTheLog) {
   EXPECT_NEAR(cut.log.t.front(), 12.0 - kOnsetLeadIn, 0.011);
   EXPECT_EQ(cut.log.t.back(), run.log.t.back());
   EXPECT_TRUE(cut.initial_from_log);
+}
+
+/// The case's truth run with `changes` ("T:key=value", as lk_simulate --change takes them) and the
+/// benchmark's sensor noise, logged at 100 Hz: an effect switched on at a known time.
+GapRun runWithChanges(const BenchmarkCase& c, const std::vector<std::string>& changes) {
+  SimConfig truth = benchmarkTruth(c);
+  truth.simulation.log_rate = 100.0;
+  std::vector<TimedChange> timed;
+  for (const std::string& text : changes) timed.push_back(parseTimedChange(text));
+  const RunResult result = ClosedLoop(truth, timed).run();
+  EXPECT_FALSE(result.diverged()) << c.id;
+  GapLog log = gapLogFromRows(result.rows, c.id + ".csv");
+  addSensorNoise(log, SensorNoise{}, c.seed);
+  return gapRun(std::move(log), benchmarkCaseNominal(c));
+}
+
+GapReport diagnosePair(const GapRun& training, const GapRun& heldout) {
+  DiagnosisOptions options;
+  options.effects = {"lateral_disturbance", "steering_friction"};
+  options.closed_loop = false;
+  return diagnoseGap(training.config, {training}, {heldout}, options);
+}
+
+/// A training run on a sinusoid (25 s) and a held-out run on lane changes (20 s), each with `effect`
+/// switched on at its own time (-1: never; 0: from the start).
+struct Pair {
+  GapRun training, heldout;
+};
+Pair pairWith(const std::vector<std::string>& effect, double train_on, double held_on) {
+  auto changes = [&](double on) {
+    std::vector<std::string> out;
+    if (on < 0.0) return out;
+    for (const std::string& assignment : effect) out.push_back(std::to_string(on) + ":" + assignment);
+    return out;
+  };
+  BenchmarkCase train{"pair-train", "in_list", "lateral_disturbance", "large", "sinusoid", {}, 41};
+  train.setup = {"simulation.duration=25", "actuator.p=1250"};
+  BenchmarkCase held{"pair-held", "in_list", "lateral_disturbance", "large", "lane_change", {}, 43};
+  held.setup = {"simulation.duration=20", "actuator.p=1250", "simulation.initial.y=-0.5"};
+  return {runWithChanges(train, changes(train_on)), runWithChanges(held, changes(held_on))};
+}
+
+const std::vector<std::string> kCrosswind{"disturbance.lateral_force=500", "disturbance.yaw_moment=100"};
+
+const RunOnset* onsetOf(const GapReport& r, const std::string& log) {
+  for (const RunOnset& o : r.where.onsets) {
+    if (o.log == log) return &o;
+  }
+  return nullptr;
+}
+
+TEST(GapOnset, InPairModeEachRunHasItsOwnOnset) {
+  const Pair pair = pairWith(kCrosswind, 14.0, 8.0);
+  const GapReport r = diagnosePair(pair.training, pair.heldout);
+  ASSERT_TRUE(r.detection.heldout.detected || r.detection.training.detected);
+  const RunOnset* train = onsetOf(r, "pair-train.csv");
+  const RunOnset* held = onsetOf(r, "pair-held.csv");
+  ASSERT_NE(train, nullptr) << gapReportJson(r);
+  ASSERT_NE(held, nullptr) << gapReportJson(r);
+  EXPECT_NEAR(train->t - train->log_t0, 14.0, 2.0);
+  EXPECT_NEAR(held->t - held->log_t0, 8.0, 2.0);
+  EXPECT_FALSE(std::isfinite(r.where.onset));  // the single-run field stays for one run
+  // report.json carries them, with the time since each log's start.
+  const std::string json = gapReportJson(r);
+  EXPECT_NE(json.find("\"onsets\""), std::string::npos);
+  EXPECT_NE(json.find("\"since_start\""), std::string::npos);
+}
+
+TEST(GapOnset, InPairModeAnEffectFromTheStartHasNoOnset) {
+  const Pair pair = pairWith(kCrosswind, 0.0, 0.0);
+  const GapReport r = diagnosePair(pair.training, pair.heldout);
+  EXPECT_TRUE(r.detection.heldout.detected);
+  EXPECT_TRUE(r.where.onsets.empty()) << gapReportJson(r);
+}
+
+TEST(GapOnset, InPairModeNoEffectHasNoOnset) {
+  const Pair pair = pairWith(kCrosswind, -1.0, -1.0);
+  const GapReport r = diagnosePair(pair.training, pair.heldout);
+  EXPECT_FALSE(r.detection.heldout.detected);
+  EXPECT_TRUE(r.where.onsets.empty()) << gapReportJson(r);
+}
+
+TEST(GapOnset, TheSingleLogModeListsItsOnsetToo) {
+  const GapReport r = diagnose(crosswind("onset", {"disturbance.lateral_force=500", "disturbance.yaw_moment=100",
+                                                   "disturbance.onset_x=200"}));
+  ASSERT_EQ(r.where.onsets.size(), 1u);
+  EXPECT_EQ(r.where.onsets[0].t, r.where.onset);
+  EXPECT_NEAR(r.where.onsets[0].t - r.where.onsets[0].log_t0, 200.0 / 15.0, 1.0);
 }
 
 }  // namespace

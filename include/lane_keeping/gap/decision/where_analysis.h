@@ -14,7 +14,8 @@ namespace lane_keeping {
 namespace diagnosis {
 
 /// `ev` holds the nominal replays and scores (with their references) over `data`; `artifacts` (may be
-/// null) receives the residual and spectrum series of every subsystem.
+/// null) receives the residual and spectrum series of every subsystem. Each run whose dominant-subsystem
+/// excess sets in mid-run gets an onset (GapWhere::onsets; `onset` too when the data hold one run).
 GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, double upstream_share,
                        DiagnosisArtifacts* artifacts);
 

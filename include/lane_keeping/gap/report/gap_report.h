@@ -39,14 +39,23 @@ struct RegimeShare {
   double time_share = 0.0;    ///< fraction of the samples (to compare with `share`)
 };
 
+/// Where one run's gap sets in mid-run (where_analysis.h): before it, the nominal matches the log.
+struct RunOnset {
+  std::string log;      ///< the run (log source)
+  double t = 0.0;       ///< [s] the onset, in the log's own time
+  double log_t0 = 0.0;  ///< [s] the log's first sample, in its own time: t - log_t0 is the time since its start
+};
+
 struct GapWhere {
   std::string subsystem;  ///< the subsystem that carries the gap
   std::vector<SubsystemGap> subsystems;
   std::vector<WindowShare> windows;  ///< the time windows carrying most of the gap, largest first
-  /// [s] where one run's gap sets in mid-run: the start of the first time window by which 5 % of its
-  /// excess has accrued, when that lies at least a quarter into the run (before it, the nominal matches
-  /// the log); NaN when the gap is there from the start or the data hold several runs.
+  /// [s] where the gap of a diagnosis of one run sets in mid-run (the single-log mode; its one entry of
+  /// `onsets`); NaN when the gap is there from the start, none is detected or the data hold several runs.
   double onset = std::numeric_limits<double>::quiet_NaN();
+  /// Per run (training and held-out runs alike, in the order of the logs), where its gap sets in mid-run;
+  /// runs whose gap is there from the start (or that have none) are absent. Empty when no gap is detected.
+  std::vector<RunOnset> onsets;
   std::vector<BandShare> bands;      ///< all bands, low to high frequency
   std::vector<RegimeShare> regimes;
 };

@@ -10,6 +10,7 @@
 //                    "null_max", "detected"}, "training": {..} }  (not tested: p_value null, no "detected"),
 //     "where":   { "subsystem", "subsystems": [{"name", "nrmse", "noise_floor", "outputs": [..]}],
 //                  "windows": [{"log", "t0", "t1", "share", "log_t0"}], "onset" (optional),
+//                  "onsets": [{"log", "t", "since_start"}] (per run; since_start = t - the log's first sample),
 //                  "bands": [{"f0", "f1", "share"}],
 //                  "regimes": [{"variable", "lo", "hi", "share", "time_share"}] },
 //     "ranking": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {"key": "value"},
@@ -74,6 +75,10 @@ OrderedJson toJson(const GapWhere& w) {
                               {"share", number(s.share)},
                               {"log_t0", number(s.log_t0)}});
   if (std::isfinite(w.onset)) out["onset"] = w.onset;
+  out["onsets"] = OrderedJson::array();
+  for (const RunOnset& o : w.onsets) {
+    out["onsets"].push_back({{"log", o.log}, {"t", number(o.t)}, {"since_start", number(o.t - o.log_t0)}});
+  }
   out["bands"] = OrderedJson::array();
   for (const BandShare& s : w.bands)
     out["bands"].push_back({{"f0", number(s.f0)}, {"f1", number(s.f1)}, {"share", number(s.share)}});
@@ -441,6 +446,15 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     rep.where.windows.push_back(s);
   });
   r.get(w, wp, "onset", &rep.where.onset);
+  r.forEach(w, wp, "onsets", false, [&](const Json& e, const std::string& p) {
+    RunOnset o;
+    double since_start = 0.0;
+    r.get(e, p, "log", &o.log, true);
+    r.get(e, p, "t", &o.t, true);
+    r.get(e, p, "since_start", &since_start, true);
+    o.log_t0 = o.t - since_start;
+    rep.where.onsets.push_back(o);
+  });
   r.forEach(w, wp, "bands", true, [&](const Json& e, const std::string& p) {
     BandShare s;
     r.get(e, p, "f0", &s.f0, true);

@@ -237,6 +237,15 @@ void writeWhere(std::ostream& out, const GapReport& r) {
     for (const auto& [log, t0] : starts) out << "\n" << log << " starts at t = " << num(t0, "%.3f") << " s in its own time.\n";
     out << "\n";
   }
+  if (!w.onsets.empty()) {
+    out << "The gap sets in mid-run (before it the nominal model matches the log within noise):";
+    for (std::size_t i = 0; i < w.onsets.size(); ++i) {
+      const RunOnset& o = w.onsets[i];
+      out << (i == 0 ? " " : "; ") << cell(o.log) << " at " << num(std::round(10.0 * (o.t - o.log_t0)) / 10.0, "%.6g")
+          << " s after its start";
+    }
+    out << ".\n\n";
+  }
   if (!w.bands.empty()) {
     out << "Frequency bands:\n\n| band [Hz] | share |\n|---|---:|\n";
     for (const BandShare& s : w.bands) out << "| " << num(s.f0) << " – " << num(s.f1) << " | " << percent(s.share) << " |\n";
