@@ -15,8 +15,9 @@
 /// summed evidence of the chain's effects, which telescopes to the evidence of all of them over the
 /// nominal; k their parameters; m = min_evidence_per_parameter). The physical-led chain keeps the lead only
 /// where its penalised evidence beats the sensor-led chain's by m per parameter of its leader, as a single
-/// physical effect must beat a single sensor error (winner_selection.h); and the sensor-led chain must
-/// remove at least min_shrink of the held-out gap, as a leader must.
+/// physical effect must beat a single sensor error (winner_selection.h); the sensor-led chain must
+/// remove at least min_shrink of the held-out gap, as a leader must, and its first sensor error alone at
+/// least min_further_shrink (10 %), as an effect added on top of others must remove of what is left.
 #include <string>
 #include <vector>
 

@@ -8,8 +8,9 @@ namespace lane_keeping {
 namespace diagnosis {
 namespace {
 
-VerdictEffect effect(const std::string& name, double evidence, int parameters, bool sensor) {
+VerdictEffect effect(const std::string& name, double evidence, int parameters, bool sensor, double share = 0.25) {
   VerdictEffect e;
+  e.share = share;
   e.effect = name;
   e.evidence = evidence;
   e.sensor = sensor;
@@ -69,6 +70,17 @@ TEST(SensorLedSelection, OneSensorErrorOrTooLittleShrinkSaysNothingNew) {
   // A chain that removes less than min_shrink (30 %) of the gap cannot lead, whatever its evidence.
   const ForwardSelection weak = chain({effect("sensor_offset", 5000.0, 1, true), effect("sensor_scale", 5000.0, 1, true)}, 0.75);
   EXPECT_FALSE(sensorsLead(physical, weak, 1.0, options(), nullptr));
+}
+
+TEST(SensorLedSelection, ASensorErrorThatExplainsNothingItselfCannotLeadAPhysicalEffect) {
+  // The benchmark's steering-friction log: a gyro scale removing 0.3 % of the gap, then the friction on top,
+  // within 50 of the friction alone. The chain's sensor part earns nothing: the friction keeps the lead.
+  const ForwardSelection physical = chain({effect("steering_friction", 6751.0, 2, false, 0.766)}, 0.234);
+  const ForwardSelection riding = chain({effect("sensor_scale", 60.0, 1, true, 0.003), effect("steering_friction", 6743.0, 2, false, 0.758)}, 0.239);
+  EXPECT_FALSE(sensorsLead(physical, riding, 1.0, options(), nullptr));
+  // The same chain whose sensor error removes 10 % or more alone can lead.
+  const ForwardSelection earning = chain({effect("sensor_scale", 1500.0, 1, true, 0.12), effect("steering_friction", 5400.0, 2, false, 0.65)}, 0.23);
+  EXPECT_TRUE(sensorsLead(physical, earning, 1.0, options(), nullptr));
 }
 
 }  // namespace
