@@ -17,7 +17,9 @@
 /// where its penalised evidence beats the sensor-led chain's by m per parameter of its leader, as a single
 /// physical effect must beat a single sensor error (winner_selection.h); the sensor-led chain must
 /// remove at least min_shrink of the held-out gap, as a leader must, and its first sensor error alone at
-/// least min_further_shrink (10 %), as an effect added on top of others must remove of what is left.
+/// least min_further_shrink (10 %), as an effect added on top of others must remove of what is left; and
+/// it must be a complete explanation where the physical chain is not: its net held-out gap 0 (what it
+/// leaves lies within the noise-only reference), the physical chain's above 0.
 #include <string>
 #include <vector>
 

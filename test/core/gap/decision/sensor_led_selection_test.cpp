@@ -55,7 +55,7 @@ TEST(SensorLedSelection, APhysicalChainThatExplainsClearlyMoreKeepsTheLead) {
 
 TEST(SensorLedSelection, APhysicalLeaderMustBeatTheSensorsByItsParametersCost) {
   // Equal penalised evidence up to less than 50 per parameter of the physical leader (2 here): sensors.
-  const ForwardSelection sensors = chain({effect("sensor_offset", 500.0, 1, true), effect("sensor_scale", 500.0, 1, true)}, 0.1);
+  const ForwardSelection sensors = chain({effect("sensor_offset", 500.0, 1, true), effect("sensor_scale", 500.0, 1, true)}, 0.0);
   const double sensors_score = 1000.0 - 100.0;
   const ForwardSelection close = chain({effect("inertia", sensors_score + 100.0 + 99.0, 2, false)}, 0.1);
   const ForwardSelection clear = chain({effect("inertia", sensors_score + 100.0 + 101.0, 2, false)}, 0.1);
@@ -79,8 +79,24 @@ TEST(SensorLedSelection, ASensorErrorThatExplainsNothingItselfCannotLeadAPhysica
   const ForwardSelection riding = chain({effect("sensor_scale", 60.0, 1, true, 0.003), effect("steering_friction", 6743.0, 2, false, 0.758)}, 0.239);
   EXPECT_FALSE(sensorsLead(physical, riding, 1.0, options(), nullptr));
   // The same chain whose sensor error removes 10 % or more alone can lead.
-  const ForwardSelection earning = chain({effect("sensor_scale", 1500.0, 1, true, 0.12), effect("steering_friction", 5400.0, 2, false, 0.65)}, 0.23);
+  const ForwardSelection earning = chain({effect("sensor_scale", 1500.0, 1, true, 0.12), effect("steering_friction", 5400.0, 2, false, 0.65)}, 0.0);
   EXPECT_TRUE(sensorsLead(physical, earning, 1.0, options(), nullptr));
+}
+
+TEST(SensorLedSelection, OnlyACompleteSensorExplanationDisplacesAnIncompletePhysicalOne) {
+  // The candidates family's stiffness log: a steering scale with inertia on top removes 86 % (net gap 0.04
+  // left) with more evidence than the true stiffness loss fitted alone (74 %). Incomplete: the physical
+  // leader keeps the lead. Complete (net gap 0) against the physical chain's 0.26 left: the sensors lead;
+  // against a physical chain that is complete too: they do not.
+  const ForwardSelection stiffness = chain({effect("cornering_stiffness", 3.593e6, 2, false, 0.74)}, 0.26);
+  const ForwardSelection incomplete = chain({effect("sensor_scale", 3.551e6, 1, true, 0.719), effect("inertia", 2.2e5, 2, false, 0.143)}, 0.138);
+  EXPECT_FALSE(sensorsLead(stiffness, incomplete, 1.0, options(), nullptr));
+  ForwardSelection complete = incomplete;
+  complete.gap_after = 0.0;
+  EXPECT_TRUE(sensorsLead(stiffness, complete, 1.0, options(), nullptr));
+  ForwardSelection stiffness_complete = stiffness;
+  stiffness_complete.gap_after = 0.0;
+  EXPECT_FALSE(sensorsLead(stiffness_complete, complete, 1.0, options(), nullptr));
 }
 
 }  // namespace
