@@ -42,8 +42,11 @@ struct SensorNoise {
 void addSensorNoise(GapLog& log, const SensorNoise& noise, unsigned seed);
 
 /// The noise a log shows: white levels from fourth differences (LogSignals::noise), and each channel's
-/// character (estimateCharacter) where it is more than white noise.
-SensorNoise estimatedNoise(const LogSignals& log);
+/// character (estimateCharacter) where it is more than white noise. `nominal`, if given, is the noise-free
+/// nominal run over the log's span (nominalReferenceLog): its columns, at the log's times, take the
+/// nominal motion out of a characterised channel's level and colour. Give it only the columns the model
+/// simulates (not ones copied or smoothed from the log itself).
+SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal = nullptr);
 
 /// The nominal closed loop over the span of `log` (times shifted to the log's start), sampled at its
 /// median rate, with `log`'s optional columns only, without noise: the noise is added to the record,

@@ -20,6 +20,7 @@ namespace {
 /// the log's span at the plant's 0.1 ms step where one does (~75 % of a 60 s log's `where` stage).
 struct NominalReference {
   GapLog log;
+  SensorNoise noise;  ///< the log's noise (estimatedNoise), its nominal motion taken out by this reference
   std::string error;  ///< set when the nominal closed loop diverges before the log's end
 };
 using NominalReferences = std::map<const LogSignals*, NominalReference>;
@@ -40,8 +41,15 @@ NominalReferences nominalReferences(const std::vector<Dataset>& train, const std
   parallelFor(distinct.size(), threads, [&](std::size_t k) {
     NominalReference& r = out.at(distinct[k]->log.get());  // the map's nodes are not moved: one per thread
     try {
-      r.log = input_driven ? inputDrivenReferenceLog(*distinct[k]->config, *distinct[k]->log)
-                           : nominalReferenceLog(*distinct[k]->config, *distinct[k]->log);
+      const LogSignals& log = *distinct[k]->log;
+      r.log = input_driven ? inputDrivenReferenceLog(*distinct[k]->config, log)
+                           : nominalReferenceLog(*distinct[k]->config, log);
+      // The input-driven reference's steering, torque and speed are the log's own (smoothed or copied):
+      // only what its chassis simulates tells the log's motion from its noise.
+      GapLog simulated;
+      simulated.t = r.log.t;
+      for (const char* column : {"x", "y", "psi", "yaw_rate", "ay"}) *simulated.column(column) = *r.log.column(column);
+      r.noise = estimatedNoise(log, input_driven ? &simulated : &r.log);
     } catch (const LaneKeepingError& e) {
       r.error = e.what();
     }
@@ -68,7 +76,7 @@ Draw referenceDraw(const std::vector<Dataset>& train, const std::vector<Dataset>
     const NominalReference& loop = nominal.at(set.log.get());
     if (!loop.error.empty()) throw LaneKeepingError(loop.error);
     GapLog noisy = loop.log;
-    addSensorNoise(noisy, estimatedNoise(*set.log), run_seed);
+    addSensorNoise(noisy, loop.noise, run_seed);
     auto log = std::make_shared<const LogSignals>(std::move(noisy));
     reference[set.log.get()] = log;
     return std::shared_ptr<const LogSignals>(log);

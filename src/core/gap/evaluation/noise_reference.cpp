@@ -33,7 +33,29 @@ void addSensorNoise(GapLog& g, const SensorNoise& n, unsigned seed) {
   add("v", g.v, n.speed);
 }
 
-SensorNoise estimatedNoise(const LogSignals& log) {
+namespace {
+
+/// Column `v` of times `t` at the times `at` (linear; clamped at the ends); empty if `v` is.
+std::vector<double> valuesAt(const std::vector<double>& t, const std::vector<double>& v, const std::vector<double>& at) {
+  std::vector<double> out;
+  if (v.empty() || v.size() != t.size()) return out;
+  out.reserve(at.size());
+  std::size_t i = 0;
+  for (double time : at) {
+    while (i + 1 < t.size() && t[i + 1] <= time) ++i;
+    if (i + 1 >= t.size() || time <= t[i]) {
+      out.push_back(time <= t.front() ? v.front() : v[i]);
+      continue;
+    }
+    const double w = (time - t[i]) / (t[i + 1] - t[i]);
+    out.push_back(v[i] + w * (v[i + 1] - v[i]));
+  }
+  return out;
+}
+
+}  // namespace
+
+SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal) {
   using C = LogSignals;
   SensorNoise n;
   // x and y share one sensor; the larger estimate is the safer one (a curving path inflates neither much).
@@ -51,7 +73,10 @@ SensorNoise estimatedNoise(const LogSignals& log) {
         {"torque", C::kTorque, n.torque}, {"ay", C::kLateralAcceleration, n.lateral_acceleration},
         {"v", C::kSpeed, n.speed}}) {
     if (!log.has(channel)) continue;
-    const ChannelCharacter c = estimateCharacter(log.samples(channel), white);
+    const std::vector<double> model =
+        nominal && nominal->column(column) ? valuesAt(nominal->t, *nominal->column(column), log.times())
+                                           : std::vector<double>{};
+    const ChannelCharacter c = estimateCharacter(log.samples(channel), white, model);
     if (!c.plain()) n.character[column] = c;
   }
   if (log.log().hasSteeringRate()) {
@@ -114,7 +139,7 @@ GapLog nominalReferenceLog(const SimConfig& nominal, const LogSignals& log) {
 
 GapLog noiseReferenceLog(const SimConfig& nominal, const LogSignals& log, unsigned seed) {
   GapLog out = nominalReferenceLog(nominal, log);
-  addSensorNoise(out, estimatedNoise(log), seed);
+  addSensorNoise(out, estimatedNoise(log, &out), seed);
   return out;
 }
 
