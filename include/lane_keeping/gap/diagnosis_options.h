@@ -28,6 +28,9 @@ struct DiagnosisOptions {
   /// residual keeps structure beyond the noise-only null.
   double untouched_share = 0.25;
   double half_explanation = 0.5;
+  /// The best this many candidates that leave excess in subsystems they do not change get noise-only
+  /// draws of their own closed loop, to tell the effect's knock-on there from a second gap (knock_on.h).
+  int knock_on_candidates = 2;
   double min_evidence_per_parameter = 50.0;  ///< held-out evidence a candidate needs per fitted parameter
   /// Several effects at once (forward_selection.h): at most this many named, each further one removing
   /// at least min_further_shrink of what the effects before it leave and min_effect_share of the

@@ -10,6 +10,7 @@
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/parallel_for.h"
 #include "lane_keeping/gap/decision/forward_selection.h"
+#include "lane_keeping/gap/decision/knock_on.h"
 #include "lane_keeping/gap/decision/how_far.h"
 #include "lane_keeping/gap/decision/noise_null.h"
 #include "lane_keeping/gap/decision/partial_explanation.h"
@@ -265,7 +266,22 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
 
   // ---- Verdict (candidate_forms.h, verdict.h, partial_explanation.h) ----------------------------------
   report.ranking = rankFits(fits, nominal, gap_before, &report.notes);
+  // What the best candidates' own closed loops leave where they do not act (knock_on.h).
+  std::map<std::string, KnockOn> knock_on;
+  if (report.detection.heldout.detected && null.draws() > 0) {
+    const Clock::time_point knock_on_start = Clock::now();
+    knock_on = netKnockOn(&report.ranking, fits, nominal_held, held, gap_before, options, &report.notes);
+    if (!knock_on.empty()) report.wall_seconds.emplace_back("knock-on draws", secondsSince(knock_on_start));
+  }
   VerdictContext context;
+  for (const auto& [label, k] : knock_on) {
+    const auto score = nominal_held.scores.find(report.where.subsystem);
+    const auto reference = k.reference.find(report.where.subsystem);
+    if (score == nominal_held.scores.end() || reference == k.reference.end()) continue;
+    SubsystemScore netted = score->second;
+    netted.reference = std::max(netted.reference, reference->second);
+    if (netExcess(netted) == 0.0) context.where_by_knock_on.insert(label);
+  }
   context.pinned = pinnedEffects(fits);
   context.pinned_within_noise = pinnedWithinNoise(report.ranking, context.pinned, null, gap_before);
   context.where = &report.where;
@@ -274,7 +290,9 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   context.partial_of = [&](const RankedEffect& ranked) {
     for (const auto& fit : fits) {
       if (fit.ok && fit.effect->name == ranked.effect && fit.effect->form == primaryForm(ranked.form)) {
-        return partialExplanation(fit, ranked, report.where.subsystem, nominal_held, held, null, gap_before, options);
+        const auto k = knock_on.find(ranked.label());
+        return partialExplanation(fit, ranked, report.where.subsystem, nominal_held, held, null, gap_before, options,
+                                  k != knock_on.end() ? k->second.reference : std::map<std::string, double>{});
       }
     }
     return PartialExplanation{};

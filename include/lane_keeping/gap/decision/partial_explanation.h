@@ -13,6 +13,8 @@
 /// removes less than options.half_explanation of the gap — on held-out data and on the training data it
 /// was fitted to — and its residual is structured at the false-alarm rate. (Measured on the benchmark:
 /// the residual of every real effect's winner is structured, p = 1 / (B + 1); the share decides.)
+#include <map>
+#include <string>
 #include <vector>
 
 #include "lane_keeping/gap/decision/noise_null.h"
@@ -25,10 +27,12 @@ namespace lane_keeping {
 namespace diagnosis {
 
 /// The analysis of `fit` (ranked as `ranked`, the gap located in `where_subsystem`); the returned
-/// effect is empty when the fit explains the gap, else it names the partial candidate.
+/// effect is empty when the fit explains the gap, else it names the partial candidate. The untouched
+/// subsystems are netted of `knock_on_reference` where it is above their own reference (knock_on.h).
 PartialExplanation partialExplanation(const CandidateFit& fit, const RankedEffect& ranked, const std::string& where_subsystem,
                                       const Evaluation& nominal_held, const std::vector<Dataset>& held,
-                                      const NoiseNull& null, double gap_before, const DiagnosisOptions& options);
+                                      const NoiseNull& null, double gap_before, const DiagnosisOptions& options,
+                                      const std::map<std::string, double>& knock_on_reference = {});
 
 }  // namespace diagnosis
 }  // namespace lane_keeping

@@ -47,6 +47,9 @@ struct VerdictContext {
   GapDetection detection;                ///< the calibrated tests on held-out and training data
   /// The partial-explanation analysis of a would-be winner (what it leaves; see partialExplanation).
   std::function<PartialExplanation(const RankedEffect&)> partial_of;
+  /// Candidates (labels) that do not change the where-subsystem but whose own closed loop's noise-only
+  /// draws leave as much excess there: its excess is their knock-on (knock_on.h).
+  std::set<std::string> where_by_knock_on;
 };
 
 /// The verdict: `unexplained` when the held-out test does not detect a gap (saying so, and saying when

@@ -10,14 +10,19 @@ namespace diagnosis {
 
 PartialExplanation partialExplanation(const CandidateFit& fit, const RankedEffect& ranked, const std::string& where_subsystem,
                                       const Evaluation& nominal_held, const std::vector<Dataset>& held,
-                                      const NoiseNull& null, double gap_before, const DiagnosisOptions& options) {
+                                      const NoiseNull& null, double gap_before, const DiagnosisOptions& options,
+                                      const std::map<std::string, double>& knock_on_reference) {
   PartialExplanation out;
   out.form = ranked.form;
   const std::vector<std::string>& changes = fit.effect->subsystems;
   auto changed = [&](const std::string& s) { return std::find(changes.begin(), changes.end(), s) != changes.end(); };
   double untouched = 0.0;
   for (const auto& [name, score] : nominal_held.scores) {
-    if (!changed(name)) untouched += netExcess(score) * netExcess(score);
+    if (changed(name)) continue;
+    SubsystemScore netted = score;
+    const auto it = knock_on_reference.find(name);
+    if (it != knock_on_reference.end()) netted.reference = std::max(netted.reference, it->second);
+    untouched += netExcess(netted) * netExcess(netted);
   }
   out.untouched_share = gap_before > 0.0 ? untouched / (gap_before * gap_before) : 0.0;
 

@@ -106,7 +106,9 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
                          const DiagnosisOptions& options) {
   const std::string where_subsystem = context.where ? context.where->subsystem : "";
   const double gap_before = context.gap_before;
-  auto changesWhere = [&](const RankedEffect& r) { return effectChangesSubsystem(r.effect, where_subsystem, r.form); };
+  auto changesWhere = [&](const RankedEffect& r) {
+    return effectChangesSubsystem(r.effect, where_subsystem, r.form) || context.where_by_knock_on.count(r.label()) != 0;
+  };
   GapVerdict v;
   v.gap_before = gap_before;
   const WinnerSelection selection = selectWinner(ranking, changesWhere, context.pinned, options.min_shrink,
