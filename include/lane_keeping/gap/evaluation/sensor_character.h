@@ -12,7 +12,7 @@
 /// White noise at the estimated level is what a channel without any of them gets (as before: the draws
 /// of a white channel are the same to the last bit).
 ///
-/// The estimate: the hold from where the value changes (the largest h of 2 to 20 on whose one residue of
+/// The estimate: the hold from where the value changes (the largest h of 2 to 100 on whose one residue of
 /// the row index modulo h 95 % of the changes fall); the readings (one per hold); the step from the
 /// smallest non-zero difference between readings, kept if at least 90 % of the non-zero differences are
 /// within 5 % of a multiple of it; the level and correlation from the second differences of the readings

@@ -11,7 +11,7 @@ namespace {
 
 constexpr std::size_t kMinimumSamples = 50;
 
-/// The rows each reading is held for: the largest h (2 to 20) such that at least 95 % of the changes of
+/// The rows each reading is held for: the largest h (2 to 100: a 10 Hz message in a 1 kHz log) such that at least 95 % of the changes of
 /// value (of at least 20) fall on one residue of the row index modulo h; else 1. A held message changes
 /// only where a new one arrives, every h rows; a quantised signal's long runs of one value (a coarse
 /// step over a slow signal) end anywhere. (The most common run length was used before: on a gyro held
@@ -23,7 +23,7 @@ int holdOf(const std::vector<double>& v) {
     if (v[i] != v[i - 1]) changes.push_back(i);
   }
   if (changes.size() < 20) return 1;
-  for (std::size_t h = 20; h >= 2; --h) {
+  for (std::size_t h = 100; h >= 2; --h) {
     std::vector<std::size_t> count(h, 0);
     for (std::size_t i : changes) ++count[i % h];
     if (*std::max_element(count.begin(), count.end()) >= 0.95 * static_cast<double>(changes.size())) {

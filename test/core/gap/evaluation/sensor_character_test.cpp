@@ -104,6 +104,23 @@ TEST(SensorCharacter, AHeldGyroWhoseStepIsTwiceItsNoiseKeepsItsHold) {
   EXPECT_EQ(found, 10);
 }
 
+TEST(SensorCharacter, ASlowMessageInAFastLogIsHeldForAllItsRows) {
+  // A 20 Hz gyro in a 500 Hz log (the independent family's slow_gyro_20Hz): 25 rows per reading. A rule
+  // that looked for holds of at most 20 rows missed it, drew the gyro's noise fresh on every row, and a
+  // no-effect log was "detected" and named a latency.
+  ChannelCharacter truth;
+  truth.quantum = 0.0017453292519943296;
+  truth.hold = 25;
+  truth.sigma = 0.002;
+  std::vector<double> v = slowSignal(10000);
+  std::mt19937 rng(20026);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  addCharacterisedNoise(v, truth, rng, unit);
+  const ChannelCharacter c = estimateCharacter(v, fourthDifferenceNoise(v));
+  EXPECT_EQ(c.hold, 25);
+  EXPECT_NEAR(c.quantum, truth.quantum, 1e-9);
+}
+
 TEST(SensorCharacter, AQuantisedSlowChannelWithoutNoiseHasTheStepAndNoHold) {
   // A slowly turning car on a straight: a coarse step, long runs of one value that are quantisation, not
   // a hold (their lengths vary).
