@@ -22,6 +22,24 @@ std::vector<double> slowSignal(std::size_t n) {
   return v;
 }
 
+/// A bus channel's character: step, hold (rows), AR(1) correlation, level.
+ChannelCharacter busCharacter(double quantum, int hold, double ar, double sigma) {
+  ChannelCharacter c;
+  c.quantum = quantum;
+  c.hold = hold;
+  c.ar = ar;
+  c.sigma = sigma;
+  return c;
+}
+
+/// `v` through a channel of character `c`, the noise drawn from `seed`.
+std::vector<double> throughChannel(std::vector<double> v, const ChannelCharacter& c, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> unit(0.0, 1.0);
+  addCharacterisedNoise(v, c, rng, unit);
+  return v;
+}
+
 TEST(SensorCharacter, AContinuousWhiteChannelIsPlain) {
   std::vector<double> v = slowSignal(6000);
   std::mt19937 rng(3);
@@ -33,15 +51,8 @@ TEST(SensorCharacter, AContinuousWhiteChannelIsPlain) {
 }
 
 TEST(SensorCharacter, StepHoldAndColourOfABusChannelAreFound) {
-  ChannelCharacter truth;
-  truth.quantum = 0.0017;  // a CAN yaw rate's factor, rad/s
-  truth.hold = 2;          // a 50 Hz message in a 100 Hz log
-  truth.ar = 0.7;
-  truth.sigma = 0.004;
-  std::vector<double> v = slowSignal(8000);
-  std::mt19937 rng(11);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  addCharacterisedNoise(v, truth, rng, unit);
+  // A CAN yaw rate's factor (rad/s), a 50 Hz message in a 100 Hz log, coloured.
+  const std::vector<double> v = throughChannel(slowSignal(8000), busCharacter(0.0017, 2, 0.7, 0.004), 11);
   const ChannelCharacter c = estimateCharacter(v, fourthDifferenceNoise(v));
   EXPECT_NEAR(c.quantum, 0.0017, 1e-9);
   EXPECT_EQ(c.hold, 2);
@@ -53,21 +64,13 @@ TEST(SensorCharacter, ASignalMovingFastBetweenReadingsIsNotTakenForNoiseWhereThe
   // A steering torque on a bus (independent family, bus_full): held 5 rows of a 500 Hz log, 0.5 N m
   // steps, AR 0.5 at 0.2 N m, on a PID torque ringing at 12 Hz with 6 N m: between 100 Hz readings the
   // torque's own motion is far larger than its noise.
-  ChannelCharacter truth;
-  truth.quantum = 0.5;
-  truth.hold = 5;
-  truth.ar = 0.5;
-  truth.sigma = 0.2;
   const std::size_t n = 10000;
   std::vector<double> signal(n);
   for (std::size_t i = 0; i < n; ++i) {
     const double t = static_cast<double>(i) / 500.0;
     signal[i] = 6.0 * std::sin(2.0 * M_PI * 12.0 * t) * std::exp(-0.2 * std::fmod(t, 5.0)) + 3.0 * std::sin(0.7 * t);
   }
-  std::vector<double> v = signal;
-  std::mt19937 rng(17);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  addCharacterisedNoise(v, truth, rng, unit);
+  const std::vector<double> v = throughChannel(signal, busCharacter(0.5, 5, 0.5, 0.2), 17);
   const ChannelCharacter alone = estimateCharacter(v, fourthDifferenceNoise(v));
   const ChannelCharacter c = estimateCharacter(v, fourthDifferenceNoise(v), signal);
   std::printf("[ measured ] torque noise 0.2 N m, AR 0.5: alone sigma %.3g AR %.2f; with the nominal sigma %.3g AR %.2f\n",
@@ -86,18 +89,11 @@ TEST(SensorCharacter, AHeldGyroWhoseStepIsTwiceItsNoiseKeepsItsHold) {
   // The RAV4-like bus of the false-alarm test below on a weaving car (0.03 rad/s at 0.5 Hz, 100 Hz rows):
   // the rounding makes runs of 2, 4, 6 rows, and the most common run length (the rule before) was below
   // 60 % of the runs, so the hold went unfound (0 of these 10 logs) and the level was put at a third.
-  ChannelCharacter truth;
-  truth.quantum = 0.00426;
-  truth.hold = 2;
-  truth.ar = 0.5;
-  truth.sigma = 0.002;
+  std::vector<double> weave(1200);
+  for (std::size_t i = 0; i < weave.size(); ++i) weave[i] = 0.03 * std::sin(2.0 * M_PI * 0.5 * static_cast<double>(i) / 100.0);
   int found = 0;
   for (unsigned seed = 1; seed <= 10; ++seed) {
-    std::vector<double> v(1200);
-    for (std::size_t i = 0; i < v.size(); ++i) v[i] = 0.03 * std::sin(2.0 * M_PI * 0.5 * static_cast<double>(i) / 100.0);
-    std::mt19937 rng(seed);
-    std::normal_distribution<double> unit(0.0, 1.0);
-    addCharacterisedNoise(v, truth, rng, unit);
+    const std::vector<double> v = throughChannel(weave, busCharacter(0.00426, 2, 0.5, 0.002), seed);
     const ChannelCharacter c = estimateCharacter(v, fourthDifferenceNoise(v));
     if (c.hold == 2) ++found;
   }
@@ -108,17 +104,11 @@ TEST(SensorCharacter, ASlowMessageInAFastLogIsHeldForAllItsRows) {
   // A 20 Hz gyro in a 500 Hz log (the independent family's slow_gyro_20Hz): 25 rows per reading. A rule
   // that looked for holds of at most 20 rows missed it, drew the gyro's noise fresh on every row, and a
   // no-effect log was "detected" and named a latency.
-  ChannelCharacter truth;
-  truth.quantum = 0.0017453292519943296;
-  truth.hold = 25;
-  truth.sigma = 0.002;
-  std::vector<double> v = slowSignal(10000);
-  std::mt19937 rng(20026);
-  std::normal_distribution<double> unit(0.0, 1.0);
-  addCharacterisedNoise(v, truth, rng, unit);
+  const double step = 0.0017453292519943296;  // 0.1 deg/s
+  const std::vector<double> v = throughChannel(slowSignal(10000), busCharacter(step, 25, 0.0, 0.002), 20026);
   const ChannelCharacter c = estimateCharacter(v, fourthDifferenceNoise(v));
   EXPECT_EQ(c.hold, 25);
-  EXPECT_NEAR(c.quantum, truth.quantum, 1e-9);
+  EXPECT_NEAR(c.quantum, step, 1e-9);
 }
 
 TEST(SensorCharacter, AQuantisedSlowChannelWithoutNoiseHasTheStepAndNoHold) {
