@@ -41,6 +41,10 @@ set +e
 ctest_status=$?
 grep -E "Test +#|tests passed|tests failed" "$LOGS/ctest_parallel.txt" | sed 's/_ctest_lane_keeping_//'
 phase "waiting for the sanitizer workspace's build"
+# Nothing of ours runs beside it now: back to the normal priority where allowed (root, as in CI's container; an
+# unprivileged user cannot lower a nice value and keeps 19). At 19 on a machine others keep busy, the build got
+# almost no CPU (measured: 30 % of it built in the 17 min the tests took beside three other builds).
+renice -n 0 -g "$(ps -o pgid= -p "$sanitize_build" | tr -d ' ')" >/dev/null 2>&1 || true
 wait "$sanitize_build"
 sanitize_build_status=$?
 set -e
