@@ -16,11 +16,12 @@
 #include "lane_keeping/gap/log/log_mapping.h"
 #include "lane_keeping/gap/log/log_reader.h"
 #include "lane_keeping/gap/replay/chassis_replay.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-const std::string kSource = LANE_KEEPING_SOURCE_DIR;
+const std::string kSource = build_paths::sourceDir();
 const std::string kVehicle = kSource + "/config/vehicles/rav4_2018.yaml";
 const std::string kLog = kSource + "/data/comma2k19/rav4_segment40.csv";
 const std::string kScenario = kSource + "/data/comma2k19/rav4_segment40.yaml";
