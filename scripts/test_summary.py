@@ -1,7 +1,14 @@
 #!/usr/bin/env python3
 """The verdict of scripts/run_tests.sh from its JUnit XML files: per file the tests, failures and time; every
 failed, errored or skipped test by name (gtest binary and Suite.Test, rostest and its test case, pytest node id);
-the slowest test cases. Exit status 1 if anything failed or errored, or a result file is missing or unreadable.
+the slowest test cases; the count of test cases by kind. Exit status 1 if anything failed or errored, or a result
+file is missing or unreadable.
+
+Counting: each test case once. A rostest writes two files: rostest-<file>.xml, one case for the whole test node
+("test<test-name>"), and the node's own rosunit-<test-name>.xml with its cases; the rostest file's case is counted
+only when the node left no rosunit file (it died, or never started), and its failure is named either way.
+(catkin_test_results counts differently: it adds a gtest file's <testsuites tests="N"> to its <testsuite>
+children's, so every gtest case twice, and it counts both rostest files; docs/tests.md, Counting.)
 
 Usage: scripts/test_summary.py [--slowest N] [--expect NAME ...] DIR_OR_FILE ...
   --expect NAME  a result file (its name without .xml) that must exist: a runner that died before writing it
@@ -72,6 +79,7 @@ def main():
 
     files = result_files(args.paths)
     problems, skipped, cases, table = [], [], [], []
+    counted = {}  # kind -> test cases counted
     seen = {os.path.basename(f)[:-len('.xml')] for f in files}
     for name in args.expect:
         if name not in seen:
@@ -91,10 +99,16 @@ def main():
         for suite in suites:
             for case in suite.iter('testcase'):
                 n += 1
+                name = case.get('name', '')
+                node_wrote_its_own = kind == 'rostest' and name.startswith('test') and 'rosunit-' + name[4:] in seen
+                if not node_wrote_its_own:
+                    count_kind = 'rostest' if kind == 'rosunit' else kind
+                    counted[count_kind] = counted.get(count_kind, 0) + 1
                 seconds_case = float(case.get('time') or 0.0)
                 seconds += seconds_case
                 what = label(kind, unit, case, args.source_dir)
-                cases.append((seconds_case, what))
+                if not node_wrote_its_own:
+                    cases.append((seconds_case, what))
                 bad = case.find('failure')
                 if bad is None:
                     bad = case.find('error')
@@ -110,8 +124,11 @@ def main():
     print('%-8s %-58s %6s %7s %9s' % ('kind', 'result', 'tests', 'failed', 'seconds'))
     for kind, unit, n, failed, seconds in table:
         print('%-8s %-58s %6d %7d %9.1f' % (kind, unit[:58], n, failed, seconds))
-    total = sum(row[2] for row in table)
-    print('%d tests in %d result files' % (total, len(table)))
+    total = sum(counted.values())
+    rostest_files = sum(1 for row in table if row[0] == 'rostest')
+    by_kind = ', '.join('%s %d' % (kind, counted[kind]) for kind in sorted(counted))
+    print('%d test cases in %d result files: %s (the rostest cases of %d launch files)'
+          % (total, len(table), by_kind, rostest_files))
     if args.slowest > 0:
         print('slowest test cases:')
         for seconds, what in sorted(cases, reverse=True)[:args.slowest]:
