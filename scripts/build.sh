@@ -45,8 +45,10 @@ fi
 CMAKE_ARGS+=("${LAUNCHER[@]}")
 if [ "$SANITIZE" = 1 ]; then
   # clang-16, so that one build serves the sanitized gtests and the libFuzzer targets (fuzz/CMakeLists.txt):
-  # every object carries libFuzzer's coverage instrumentation (-fsanitize=fuzzer-no-link; in a binary without
-  # libFuzzer, as the gtests, its hooks are the sanitizer runtime's no-ops), only the harnesses link libFuzzer.
+  # every object has the sanitizers; what the harnesses link (lane_keeping_core, the gap readers, the bag reader)
+  # also has libFuzzer's coverage instrumentation (-fsanitize=fuzzer-no-link, fuzz/CMakeLists.txt; in a binary
+  # without libFuzzer, as the gtests, its hooks are the sanitizer runtime's no-ops), only the harnesses link
+  # libFuzzer.
   SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
   # The build has debug info (-g, for the sanitizers' stack traces), which holds the compiler's working directory:
   # ccache then keys every object on that directory, so no two clones shared one (issue 45: a fresh clone missed
@@ -55,7 +57,7 @@ if [ "$SANITIZE" = 1 ]; then
   # report's paths read from the repository's root.
   DEBUG_MAP="-fdebug-prefix-map=$REPO_ROOT=."
   CMAKE_ARGS=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_CXX_COMPILER=clang++-16
-              "-DCMAKE_CXX_FLAGS=$SAN -fsanitize=fuzzer-no-link $DEBUG_MAP" "-DCMAKE_EXE_LINKER_FLAGS=$SAN"
+              "-DCMAKE_CXX_FLAGS=$SAN $DEBUG_MAP" "-DCMAKE_EXE_LINKER_FLAGS=$SAN"
               "-DCMAKE_SHARED_LINKER_FLAGS=$SAN" -DLANE_KEEPING_FUZZ_TARGETS=ON "${LAUNCHER[@]}")
   # A workspace configured for another compiler (gcc, before issue 45) starts afresh: CMake cannot switch.
   if [ -f "$WS/build/CMakeCache.txt" ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang++-16$' "$WS/build/CMakeCache.txt"; then
