@@ -127,8 +127,8 @@ def main():
     total = sum(counted.values())
     rostest_files = sum(1 for row in table if row[0] == 'rostest')
     by_kind = ', '.join('%s %d' % (kind, counted[kind]) for kind in sorted(counted))
-    print('%d test cases in %d result files: %s (the rostest cases of %d launch files)'
-          % (total, len(table), by_kind, rostest_files))
+    print('%d test cases in %d result files: %s%s' % (
+        total, len(table), by_kind, ' (the rostest cases of %d launch files)' % rostest_files if rostest_files else ''))
     if args.slowest > 0:
         print('slowest test cases:')
         for seconds, what in sorted(cases, reverse=True)[:args.slowest]:
