@@ -7,9 +7,10 @@
 #      at a time; beside them, at the lowest priority (nice 19), the core and stability gtests in the sanitizer
 #      workspace (scripts/run_sanitized_tests.sh, each suite in four gtest shards, two at a time): they take the
 #      cycles the tests leave;
-#   3. the rostests that run in realtime or load every core (label `serial`, CMakeLists.txt), one at a time; beside
-#      them, where they leave the cores idle, the fuzz targets (nice 10: each over its regression inputs and seed
-#      corpus, then fuzzed 20,000 inputs or 30 s, fuzz/run.sh) and the sanitized gtests still running (nice 19);
+#   3. the rostests that run in realtime, on a bag's clock, or load every core (label `serial`, CMakeLists.txt), one
+#      at a time; beside them, where they leave the cores idle, the fuzz targets (nice 10: each over its regression
+#      inputs and seed corpus, then fuzzed 20,000 inputs or 30 s, fuzz/run.sh) and the sanitized gtests still
+#      running (nice 19);
 #   4. what of 3. is still running, back at the normal priority (where allowed: root, as in CI's container);
 #   5. the verdict (scripts/test_summary.py): every result file, the slowest tests, the count of test cases by kind,
 #      and each failure by name: gtest binary and Suite.Test, rostest and test case, pytest node id, sanitized suite
@@ -74,7 +75,7 @@ if [ "$sanitize_build_status" -eq 0 ]; then
   fuzz=$!
   background+=("$fuzz")
 fi
-phase "tests: the serial rostests (realtime, or a busy process on every core), one at a time; beside them: the fuzz targets (nice 10)"
+phase "tests: the serial rostests (realtime, a bag's clock, or a busy process on every core), one at a time; beside them: the fuzz targets (nice 10)"
 set +e
 (cd "$WS/build" && ctest -L serial --output-log "$LOGS/ctest_serial.log" --timeout 900) >"$LOGS/ctest_serial.txt" 2>&1
 serial_status=$?
