@@ -21,6 +21,7 @@
 #include "lane_keeping/gap/log/gap_log.h"
 #include "lane_keeping/gap/monitor/gap_monitor.h"
 #include "lane_keeping/sim/closed_loop.h"
+#include "build_paths.h"
 
 using namespace lane_keeping;
 
@@ -33,7 +34,7 @@ double threadCpuSeconds() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::string source_dir = LANE_KEEPING_SOURCE_DIR;
+  std::string source_dir = lane_keeping::build_paths::sourceDir();
   std::string scenario = source_dir + "/config/scenarios/lane_change.yaml";
   double rate = 1000.0, duration = 60.0;
   std::vector<std::string> truth, settings;

@@ -2,8 +2,9 @@
 # Builds lane_keeping in a catkin workspace outside the source tree:
 #   build/ws/src/lane_keeping -> the repository (the repo root is the package).
 # Usage: scripts/build.sh [--sanitize] [extra catkin_make arguments, e.g. tests]
-#   --sanitize: AddressSanitizer + UndefinedBehaviorSanitizer (any report aborts), with debug info, in
-#   its own workspace build-sanitize/ws (scripts/run_sanitized_tests.sh runs the gtests in it).
+#   --sanitize: clang-16 with AddressSanitizer + UndefinedBehaviorSanitizer (any report aborts) and libFuzzer's
+#   coverage, with debug info, in its own workspace build-sanitize/ws: the sanitized gtests
+#   (scripts/run_sanitized_tests.sh) and the fuzz targets (fuzz/run.sh) are built there.
 set -euo pipefail
 SANITIZE=0
 if [ "${1:-}" = "--sanitize" ]; then
@@ -43,9 +44,26 @@ if command -v ccache >/dev/null 2>&1; then
 fi
 CMAKE_ARGS+=("${LAUNCHER[@]}")
 if [ "$SANITIZE" = 1 ]; then
+  # clang-16, so that one build serves the sanitized gtests and the libFuzzer targets (fuzz/CMakeLists.txt):
+  # every object has the sanitizers; what the harnesses link (lane_keeping_core, the gap readers, the bag reader)
+  # also has libFuzzer's coverage instrumentation (-fsanitize=fuzzer-no-link, fuzz/CMakeLists.txt; in a binary
+  # without libFuzzer, as the gtests, its hooks are the sanitizer runtime's no-ops), only the harnesses link
+  # libFuzzer.
   SAN="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
-  CMAKE_ARGS=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DPYTHON_EXECUTABLE=/usr/bin/python3 "-DCMAKE_CXX_FLAGS=$SAN"
-              "-DCMAKE_EXE_LINKER_FLAGS=$SAN" "-DCMAKE_SHARED_LINKER_FLAGS=$SAN" "${LAUNCHER[@]}")
+  # The build has debug info (-g, for the sanitizers' stack traces), which holds the compiler's working directory:
+  # ccache then keys every object on that directory, so no two clones shared one (issue 45: a fresh clone missed
+  # the cache for every sanitized object). Mapped to the repository's root as `.`, the directory
+  # (./build-sanitize/ws/build/lane_keeping) is the same in every clone, ccache leaves it out of the key, and a
+  # report's paths read from the repository's root.
+  DEBUG_MAP="-fdebug-prefix-map=$REPO_ROOT=."
+  CMAKE_ARGS=(-DCMAKE_BUILD_TYPE=RelWithDebInfo -DPYTHON_EXECUTABLE=/usr/bin/python3 -DCMAKE_CXX_COMPILER=clang++-16
+              "-DCMAKE_CXX_FLAGS=$SAN $DEBUG_MAP" "-DCMAKE_EXE_LINKER_FLAGS=$SAN"
+              "-DCMAKE_SHARED_LINKER_FLAGS=$SAN" -DLANE_KEEPING_FUZZ_TARGETS=ON "${LAUNCHER[@]}")
+  # A workspace configured for another compiler (gcc, before issue 45) starts afresh: CMake cannot switch.
+  if [ -f "$WS/build/CMakeCache.txt" ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang++-16$' "$WS/build/CMakeCache.txt"; then
+    rm -rf "$WS/build" "$WS/devel"
+    mkdir -p "$WS/devel/lib/python3/dist-packages" "$WS/devel/lib/pkgconfig"
+  fi
 fi
 # Always build every target first (tools must not go stale against a rebuilt library), then any
 # extra targets asked for (e.g. tests).

@@ -29,6 +29,7 @@
 #include "lane_keeping/gap/report/report_directory.h"
 #include "bag_log_reader.h"
 #include "lk_gap_budget.h"
+#include "build_paths.h"
 
 namespace {
 
@@ -236,7 +237,8 @@ int run(int argc, char** argv) {
   writeDiagnosisArtifacts(dir, artifacts);
   if (a.plots) {
     // Started from its argument vector: no shell reads the directory's name (child_process.h).
-    const ChildResult plot = runChild({"/usr/bin/python3", std::string(LANE_KEEPING_SOURCE_DIR) + "/scripts/gap_report_plots.py", dir});
+    const std::string script = std::string(lane_keeping::build_paths::sourceDir()) + "/scripts/gap_report_plots.py";
+    const ChildResult plot = runChild({"/usr/bin/python3", script, dir});
     if (!plot.ok()) {
       std::cerr << "lk_gap: plotting failed (/usr/bin/python3 scripts/gap_report_plots.py: " << plot.failure()
                 << "); report.md has no figures\n";

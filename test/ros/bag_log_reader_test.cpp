@@ -16,6 +16,7 @@
 
 #include "bag_log_reader.h"
 #include "lane_keeping/common/errors.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
@@ -181,7 +182,7 @@ TEST(BagLogReaderFuzzRegressions, CorruptOrTruncatedBagsAreInputErrorsNamingTheB
 // an index entry whose nanoseconds overflow the seconds - ros::Time threw std::runtime_error -) is an
 // InputError naming it.
 TEST(BagLogReaderFuzzRegressions, EveryRegressionInputIsAnInputErrorNamingTheBag) {
-  const std::string dir = std::string(LANE_KEEPING_SOURCE_DIR) + "/fuzz/regressions/bag_log/";
+  const std::string dir = std::string(build_paths::sourceDir()) + "/fuzz/regressions/bag_log/";
   for (const char* name : {"header_length_4gib.bag", "connection_header_field.bag", "truncated.bag",
                            "version_line_prefix.bag", "sample_count.bag", "index_offset.bag",
                            "index_connection.bag", "index_time.bag"}) {

@@ -102,7 +102,12 @@ class CheckBadStamps(unittest.TestCase):
         self.assertIsNotNone(status)
         self.assertTrue(flooded_while_running, 'the run ended during the flood; make it longer')
         self.assertEqual(status.state, status.COMPLETED, status.message)
-        time.sleep(1.0)  # let /rosout deliver
+        # /rosout delivers the nodes' warnings some time after the run ends: under load (tests in parallel on
+        # two cores) more than the 1 s once waited. Wait until every expected one is there, for 20 s at most.
+        def delivered():
+            return all(any(w.name == '/%s/%s' % (ns, node) and '/%s/%s' % (ns, topic) in w.msg and 'rejected' in w.msg
+                           for w in list(warnings)) for topic, _, _, node in TOPICS)
+        wait_for(delivered, 20.0)
 
         problems = []
         for topic, _, _, node in TOPICS:

@@ -4,7 +4,6 @@ naming the topic and the field, and do not poison the state: the run's log stays
 the in-process lk_simulate run of the same configuration."""
 import math
 import sys
-import time
 import unittest
 
 import rospy
@@ -54,7 +53,12 @@ class CheckNanRejection(unittest.TestCase):
         self.assertTrue(injected_while_running, 'the run ended before the injection arrived')
         self.assertIsNotNone(status)
         self.assertEqual(status.state, status.COMPLETED, status.message)
-        time.sleep(1.0)  # let /rosout deliver
+        # /rosout delivers the nodes' warnings some time after the run ends: under load (tests in parallel on
+        # two cores) more than the 1 s once waited. Wait until every expected one is there, for 20 s at most.
+        def delivered():
+            return all(any(w.name == '/%s/%s' % (ns, node) and '/%s/%s' % (ns, topic) in w.msg and field in w.msg
+                           for w in list(warnings)) for topic, _, node, field in injections)
+        wait_for(delivered, 20.0)
 
         problems = []
         for topic, _, node, field in injections:

@@ -8,6 +8,7 @@
 #include "lane_keeping/config/flat_params.h"
 #include "lane_keeping/config/sim_config.h"
 #include "ros_config.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
@@ -19,7 +20,7 @@ SimConfig fromTree(const XmlRpc::XmlRpcValue& tree) {
 }
 
 std::string scenario(const std::string& name) {
-  return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name;
+  return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name;
 }
 
 /// Fig 9's keys as the parameter server holds them after `rosparam load` (PyYAML types).

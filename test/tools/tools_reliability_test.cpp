@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "lane_keeping/common/child_process.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
@@ -21,10 +22,11 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-const std::string kSource = LANE_KEEPING_SOURCE_DIR;
+const std::string kSource = build_paths::sourceDir();
 /// The tools under test: this build's, or another folder's (LK_TOOLS_UNDER_TEST=DIR: e.g. an older build, to
 /// see these tests fail on the code before the fixes).
-const std::string kBin = std::getenv("LK_TOOLS_UNDER_TEST") ? std::getenv("LK_TOOLS_UNDER_TEST") : LK_BIN_DIR;
+const std::string kBin =
+    std::getenv("LK_TOOLS_UNDER_TEST") ? std::getenv("LK_TOOLS_UNDER_TEST") : build_paths::toolsDir();
 const std::string kConfig = kSource + "/config/default.yaml";
 
 ChildResult tool(const std::string& name, const std::vector<std::string>& args) {

@@ -16,6 +16,7 @@
 #include "lane_keeping/analysis/stability_chart.h"
 #include "lane_keeping/common/child_process.h"
 #include "lane_keeping/common/errors.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace stability_cli {
@@ -126,7 +127,7 @@ int writeChart(const Args& a, const SimConfig& base, const ChartSpec& spec, cons
   std::ofstream(prefix + ".json") << meta.dump(2) << "\n";
   std::cerr << "lk_stability: wrote " << prefix << ".csv and " << prefix << ".json (" << points << " points, " << seconds << " s)\n";
   if (!a.plot) return 0;
-  const std::string script = std::string(LANE_KEEPING_SOURCE_DIR) + "/scripts/plot_stability.py";
+  const std::string script = std::string(build_paths::sourceDir()) + "/scripts/plot_stability.py";
   // Its argument vector, no shell: a prefix with a quote in it is a name like any other.
   const ChildResult plot = runChild({kPython, script, prefix + ".json"});
   if (!plot.ok()) {

@@ -15,11 +15,12 @@
 #include "lane_keeping/analysis/stability_boundary.h"
 #include "lane_keeping/analysis/stability_chart.h"
 #include "lane_keeping/common/errors.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 SimConfig fig6(const std::string& tire = "brush") {
   return loadSimConfig({scenario("fig6.yaml")}, {"tire.front.model=" + tire, "tire.rear.model=" + tire});

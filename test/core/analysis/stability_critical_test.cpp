@@ -9,11 +9,12 @@
 
 #include "lane_keeping/analysis/equation_readings.h"
 #include "lane_keeping/analysis/stability_boundary.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 constexpr double kPaperFig9Tau2 = 1.9019505e-3;
 

@@ -12,11 +12,12 @@
 #include "lane_keeping/analysis/plant_linearization.h"
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/sim/model_factory.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 int indexOf(const LinearDelaySystem& s, const std::string& name) {
   const auto it = std::find(s.state_names.begin(), s.state_names.end(), name);

@@ -16,11 +16,12 @@
 #include "lane_keeping/sim/oscillation.h"
 #include "lane_keeping/analysis/stability_boundary.h"
 #include "lane_keeping/sim/closed_loop.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 struct Check {
   std::string key;     ///< parameter moved across the boundary

@@ -10,11 +10,12 @@
 #include "lane_keeping/analysis/chebyshev.h"
 #include "lane_keeping/analysis/closed_loop_linearization.h"
 #include "lane_keeping/analysis/dde_spectrum.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 LinearDelaySystem paperLoop(double tau2) {
   SimConfig c = loadSimConfig({scenario("fig9.yaml")});

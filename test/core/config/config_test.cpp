@@ -9,11 +9,12 @@
 
 #include "lane_keeping/config/flat_params.h"
 #include "lane_keeping/config/sim_config.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-const std::string kSource = LANE_KEEPING_SOURCE_DIR;
+const std::string kSource = build_paths::sourceDir();
 
 std::string writeTemp(const std::string& name, const std::string& text) {
   const std::string path = testing::TempDir() + name;
@@ -174,7 +175,7 @@ TEST(ConfigErrors, CrossFieldRules) {
 
 TEST(ConfigErrors, SimulateExitsWithStatus2AndTheMessage) {
   const std::string out = testing::TempDir() + "lk_err.txt";
-  const int status = std::system((std::string(LK_SIMULATE_BIN) + " --set vehicle.mass=-1 2>" + out + " >/dev/null").c_str());
+  const int status = std::system((std::string(build_paths::lkSimulateBinary()) + " --set vehicle.mass=-1 2>" + out + " >/dev/null").c_str());
   EXPECT_EQ(WEXITSTATUS(status), 2);
   std::ifstream in(out);
   std::stringstream text;

@@ -9,11 +9,12 @@
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/sim/change_schedule.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 SimConfig fig6() { return loadSimConfig({scenario("fig6.yaml")}); }
 

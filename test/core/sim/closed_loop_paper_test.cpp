@@ -7,11 +7,12 @@
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/sim/closed_loop.h"
 #include "lane_keeping/sim/run_summary.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 RunSummary run(const SimConfig& config, RunResult* out = nullptr) {
   const RunResult result = ClosedLoop(config).run();

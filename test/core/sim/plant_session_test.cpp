@@ -10,11 +10,12 @@
 #include "lane_keeping/sim/closed_loop.h"
 #include "lane_keeping/sim/loop_components.h"
 #include "lane_keeping/sim/plant_session.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 /// The three components with queues between them, delivered in random batches (seeded): like topics
 /// whose messages carry several samples and arrive whenever the scheduler gets to them.

@@ -13,11 +13,12 @@
 #include "lane_keeping/sim/loop_components.h"
 #include "lane_keeping/sim/plant_session.h"
 #include "lane_keeping/sim/run_summary.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 std::vector<TimedChange> parseAll(const std::vector<std::string>& texts) {
   std::vector<TimedChange> out;

@@ -10,11 +10,12 @@
 #include "lane_keeping/sim/closed_loop.h"
 #include "lane_keeping/sim/loop_components.h"
 #include "lane_keeping/sim/sensor_model.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-std::string scenario(const std::string& name) { return std::string(LANE_KEEPING_SOURCE_DIR) + "/config/scenarios/" + name; }
+std::string scenario(const std::string& name) { return std::string(build_paths::sourceDir()) + "/config/scenarios/" + name; }
 
 RunResult run(const std::string& file, const std::vector<std::string>& sets) {
   const RunResult r = ClosedLoop(loadSimConfig({scenario(file)}, sets)).run();

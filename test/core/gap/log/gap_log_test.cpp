@@ -11,11 +11,12 @@
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/gap/log/gap_log.h"
 #include "lane_keeping/sim/log_row.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-const std::string kSource = LANE_KEEPING_SOURCE_DIR;
+const std::string kSource = build_paths::sourceDir();
 
 std::string writeTemp(const std::string& name, const std::string& text) {
   const std::string path = testing::TempDir() + name;
@@ -290,7 +291,7 @@ TEST(GapLogWrite, RoundTripIsExact) {
 
 TEST(GapLogSimulator, LkSimulateOutputReadsBackWithAllOptionalColumns) {
   const std::string out = testing::TempDir() + "gl_sim.csv";
-  const std::string command = std::string(LK_SIMULATE_BIN) + " --config " + kSource +
+  const std::string command = std::string(build_paths::lkSimulateBinary()) + " --config " + kSource +
                               "/config/scenarios/fig6.yaml --set simulation.duration=2 --out " + out +
                               " >/dev/null 2>&1";
   ASSERT_EQ(std::system(command.c_str()), 0) << command;

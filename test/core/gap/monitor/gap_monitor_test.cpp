@@ -13,11 +13,12 @@
 #include "lane_keeping/gap/evaluation/noise_reference.h"
 #include "lane_keeping/gap/monitor/gap_monitor.h"
 #include "lane_keeping/sim/closed_loop.h"
+#include "build_paths.h"
 
 namespace lane_keeping {
 namespace {
 
-const std::string kDir = LANE_KEEPING_SOURCE_DIR;
+const std::string kDir = build_paths::sourceDir();
 
 MonitorStateSample state(double t, double torque = 0.0) {
   MonitorStateSample s;
