@@ -7,6 +7,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/time.h"
+#include "lane_keeping/gap/log/linear_resample.h"
 #include "lane_keeping/gap/log/logged_speed.h"
 #include "lane_keeping/sim/closed_loop.h"
 
@@ -33,28 +34,6 @@ void addSensorNoise(GapLog& g, const SensorNoise& n, unsigned seed) {
   add("v", g.v, n.speed);
 }
 
-namespace {
-
-/// Column `v` of times `t` at the times `at` (linear; clamped at the ends); empty if `v` is.
-std::vector<double> valuesAt(const std::vector<double>& t, const std::vector<double>& v, const std::vector<double>& at) {
-  std::vector<double> out;
-  if (v.empty() || v.size() != t.size()) return out;
-  out.reserve(at.size());
-  std::size_t i = 0;
-  for (double time : at) {
-    while (i + 1 < t.size() && t[i + 1] <= time) ++i;
-    if (i + 1 >= t.size() || time <= t[i]) {
-      out.push_back(time <= t.front() ? v.front() : v[i]);
-      continue;
-    }
-    const double w = (time - t[i]) / (t[i + 1] - t[i]);
-    out.push_back(v[i] + w * (v[i + 1] - v[i]));
-  }
-  return out;
-}
-
-}  // namespace
-
 SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal) {
   using C = LogSignals;
   SensorNoise n;
@@ -74,7 +53,7 @@ SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal) {
         {"v", C::kSpeed, n.speed}}) {
     if (!log.has(channel)) continue;
     const std::vector<double> model =
-        nominal && nominal->column(column) ? valuesAt(nominal->t, *nominal->column(column), log.times())
+        nominal && nominal->column(column) ? linearAt(nominal->t, *nominal->column(column), log.times())
                                            : std::vector<double>{};
     const ChannelCharacter c = estimateCharacter(log.samples(channel), white, model);
     if (!c.plain()) n.character[column] = c;

@@ -1,4 +1,5 @@
 #include "lane_keeping/gap/log/column_shift.h"
+#include "lane_keeping/gap/log/linear_resample.h"
 
 #include <algorithm>
 #include <cstdio>
@@ -18,16 +19,9 @@ std::string seconds(double s) {
 
 /// `values` (on `t`) at times t + shift, linear interpolation; t + shift must lie within [t.front(), t.back()].
 std::vector<double> shifted(const std::vector<double>& t, const std::vector<double>& values, double shift) {
-  std::vector<double> out(t.size());
-  std::size_t j = 0;
-  for (std::size_t i = 0; i < t.size(); ++i) {
-    const double at = t[i] + shift;
-    while (j + 2 < t.size() && t[j + 1] <= at) ++j;
-    while (j > 0 && t[j] > at) --j;
-    const double w = t.size() > 1 ? (at - t[j]) / (t[j + 1] - t[j]) : 0.0;
-    out[i] = t.size() > 1 ? values[j] + std::clamp(w, 0.0, 1.0) * (values[j + 1] - values[j]) : values[j];
-  }
-  return out;
+  std::vector<double> at(t);
+  for (double& x : at) x += shift;
+  return linearAt(t, values, at);
 }
 
 }  // namespace
