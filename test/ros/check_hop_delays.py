@@ -52,9 +52,6 @@ class Recorder(object):
         with self.lock:
             return {k: np.array(sorted(v)) for k, v in self.data.items()}
 
-    def connected(self):
-        return all(s.get_num_connections() > 0 for s in self.subs)
-
 
 def search(residual, lo, hi):
     """argmin of residual(delay) over [lo, hi]: 100 us grid, then 1 us around the best."""
@@ -98,32 +95,41 @@ class CheckHopDelays(unittest.TestCase):
         results = []
 
         # pose -> tracker: delta_des(t) = -k_psi sin(psi(t - tau1)) - k_y y(t - tau1)   (straight road)
+        # Each output sample is compared where its input was recorded: a subscription of the recorder can connect
+        # after the loop has started (the plant waits a fixed startup_settle of wall time for three of the four;
+        # under ctest -j2 the torque stream once began late, and the held first value was fitted as a delay).
+        def covered(q, source):
+            return (q >= source[0, 0]) & (q <= source[-1, 0])
+
+        def worst(difference, mask):
+            self.assertGreater(int(np.count_nonzero(mask)), 100, 'too few samples with their input recorded')
+            return np.max(np.abs(difference[mask]))
+
         def tracker_residual(tau):
             q = de[:, 0] - tau
             predicted = -k_psi * np.sin(np.interp(q, st[:, 0], st[:, 2])) - k_y * np.interp(q, st[:, 0], st[:, 1])
-            return np.max(np.abs(predicted - de[:, 1]))
+            return worst(predicted - de[:, 1], covered(q, st))
         results.append(('pose_to_tracker', delays['pose_to_tracker'], search(tracker_residual, 0.0, 0.3),
                         np.max(np.abs(de[:, 1]))))
 
         # desired, measured -> actuator: M(t) = kp e + kd e_dot + ki z, e = delta_des(t - tau_a) - delta(t - tau_b)
-        def torque_of(tau_a, tau_b):
+        def actuator_residual(tau_a, tau_b):
             qa, qb = to[:, 0] - tau_a, to[:, 0] - tau_b
             e = np.interp(qa, de[:, 0], de[:, 1]) - np.interp(qb, me[:, 0], me[:, 1])
             e_dot = np.interp(qa, de[:, 0], de[:, 2]) - np.interp(qb, me[:, 0], me[:, 2])
-            return kp * e + kd * e_dot + ki * to[:, 2]
+            return worst(kp * e + kd * e_dot + ki * to[:, 2] - to[:, 1], covered(qa, de) & covered(qb, me))
         tau_a, tau_b = delays['desired_steering_to_actuator'], delays['steering_angle_to_actuator']
         results.append(('desired_steering_to_actuator', tau_a,
-                        search(lambda t: np.max(np.abs(torque_of(t, tau_b) - to[:, 1])), 0.0, 1e-3),
-                        np.max(np.abs(to[:, 1]))))
+                        search(lambda t: actuator_residual(t, tau_b), 0.0, 1e-3), np.max(np.abs(to[:, 1]))))
         results.append(('steering_angle_to_actuator', tau_b,
-                        search(lambda t: np.max(np.abs(torque_of(tau_a, t) - to[:, 1])), 0.0, 1e-3),
-                        np.max(np.abs(to[:, 1]))))
+                        search(lambda t: actuator_residual(tau_a, t), 0.0, 1e-3), np.max(np.abs(to[:, 1]))))
 
         # torque -> plant: the torque acting at t is M(t - delay) (state samples after the first step)
         applied = st[1:]
-        results.append(('torque_to_plant', delays['torque_to_plant'],
-                        search(lambda t: np.max(np.abs(np.interp(applied[:, 0] - t, to[:, 0], to[:, 1]) -
-                                                       applied[:, 3])), 0.0, 1e-3),
+        def plant_residual(tau):
+            q = applied[:, 0] - tau
+            return worst(np.interp(q, to[:, 0], to[:, 1]) - applied[:, 3], covered(q, to))
+        results.append(('torque_to_plant', delays['torque_to_plant'], search(plant_residual, 0.0, 1e-3),
                         np.max(np.abs(to[:, 1]))))
 
         problems = []

@@ -28,7 +28,7 @@ from dynamic_reconfigure.client import Client
 from rosgraph_msgs.msg import Log
 
 from lane_keeping.msg import ParameterChange
-from lk_test_support import StatusWatcher, compare_logs, run_lk_simulate, summary_changes, temp_csv
+from lk_test_support import StatusWatcher, compare_logs, run_lk_simulate, summary_changes, temp_csv, wait_connected
 
 
 class CheckReconfigure(unittest.TestCase):
@@ -38,7 +38,8 @@ class CheckReconfigure(unittest.TestCase):
         watcher = StatusWatcher(ns)
         announced = []
         logs = []
-        rospy.Subscriber('/%s/parameter_changes' % ns, ParameterChange, announced.append, queue_size=100)
+        changes_sub = rospy.Subscriber('/%s/parameter_changes' % ns, ParameterChange, announced.append,
+                                       queue_size=100)
         rospy.Subscriber('/rosout', Log, logs.append, queue_size=1000)
         tracker = Client('/%s/path_tracking' % ns, timeout=60)
         actuator = Client('/%s/steering_actuator' % ns, timeout=60)
@@ -50,6 +51,9 @@ class CheckReconfigure(unittest.TestCase):
         self.assertEqual((shown['p'], shown['tau2']), (2500.0, 1e-4))
 
         self.assertTrue(watcher.wait_running(60), 'the run did not start')
+        # The announcements are not latched: connect to all three nodes' parameter_changes first.
+        found = wait_connected(changes_sub, '/%s/parameter_changes' % ns, 3, 60)
+        self.assertEqual(changes_sub.get_num_connections(), 3, 'parameter_changes publishers: %s' % found)
         # A change at a stamped time, well ahead of the run.
         answer = tracker.update_configuration({'k_psi': 1.2, 'apply_at': 4.0})
         self.assertEqual(answer['k_psi'], 1.2)

@@ -63,6 +63,26 @@ def wait_for(predicate, timeout, period=0.02):
     return predicate()
 
 
+def publishers_of(topic):
+    """Callers the master lists as publishing `topic` (a resolved name)."""
+    import rosgraph
+    publishers, _, _ = rosgraph.Master(rospy.get_name()).getSystemState()
+    for name, nodes in publishers:
+        if name == topic:
+            return list(nodes)
+    return []
+
+
+def wait_connected(subscriber, topic, expected, timeout):
+    """Waits until `subscriber` has a connection to each of at least `expected` publishers of `topic`.
+    A message published before its connection is up is lost (not latched); a check that counts
+    announcements must not start the changes before then (reconfigure_in_lockstep lost the actuator's
+    announcement once under ctest -j2). Returns the publishers found."""
+    wait_for(lambda: len(publishers_of(topic)) >= expected and
+             subscriber.get_num_connections() >= len(publishers_of(topic)), timeout, period=0.05)
+    return publishers_of(topic)
+
+
 def run_lk_simulate(configs, sets, out_csv, changes=()):
     """Runs the in-process loop on the same files (and runtime changes, "T:key=value"); returns
     (exit code, stdout)."""
