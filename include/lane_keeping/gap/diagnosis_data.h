@@ -46,7 +46,29 @@ struct Dataset {
   std::vector<TimeSegment> segments;
 };
 
-/// Each run whole, from `margin` seconds after its start, less its holes (cutAtHoles).
+/// The start of a log (issue 47, kind 2). A run that starts with a large correction (an initial offset
+/// of metres, a lane change under way) holds much of its excitation in its first seconds, and an effect
+/// that acts only there (a torque limit the initial correction hits, a tire lag the transient shows) is
+/// invisible anywhere else. A run *starts with a transient* when its first kStartTransientWindow seconds
+/// hold at least kStartTransientShare of its excitation (the mean over the kinds of `excitations` of each
+/// one's share) and at least kStartTransientRatio times their share of its duration. On the two benchmark
+/// families: every run from a 1.5-3 m offset on a straight road (shares 0.35-0.6), none of the lane
+/// changes, sinusoids and bends that start on the lane (0.07-0.3, at most 3.0 times their time share).
+constexpr double kStartTransientWindow = 2.0;  ///< [s]
+constexpr double kStartTransientShare = 0.3;
+constexpr double kStartTransientRatio = 3.0;
+/// For such a run the data begin at its first sample rather than start_margin later (the replays take
+/// their delayed inputs only where the log holds them: the tracker from start + tau1, the actuator from
+/// start + tau2; the steering and chassis replays start from the logged state), and with one run the
+/// window is cut into slivers of kStartSliver seconds that alternate between training and held-out data,
+/// so that both sides see the transient. The 0.6 s margin and a block of at least min_block_length put
+/// it wholly into training: a 48 N m limit cut by a 2 m correction in its first 0.5 s was "a gap the
+/// held-out data do not confirm".
+constexpr double kStartSliver = 0.25;  ///< [s]
+bool startsWithTransient(const LogSignals& log, const SimConfig& config);
+
+/// Each run whole, from `margin` seconds after its start (from its start if it starts with a transient),
+/// less its holes (cutAtHoles).
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin);
 
 /// The data sets' segments with each hole of their log's time axis (timeHoles, input_checks.h) cut out,

@@ -81,7 +81,10 @@ std::set<std::string> availableSubsystems(const std::vector<RunData>& runs) {
 
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin) {
   std::vector<Dataset> out;
-  for (const auto& run : runs) out.push_back({run.log, run.config, {{run.log->start() + margin, run.log->end() + 1e-9}}});
+  for (const auto& run : runs) {
+    const double from = run.log->start() + (startsWithTransient(*run.log, *run.config) ? 0.0 : margin);
+    out.push_back({run.log, run.config, {{from, run.log->end() + 1e-9}}});
+  }
   cutAtHoles(&out, margin);
   return out;
 }
@@ -96,6 +99,13 @@ void cutAtHoles(std::vector<Dataset>* data, double margin) {
     }
     std::vector<TimeSegment> pieces;
     for (const TimeSegment& segment : set.segments) {
+      // A segment no hole touches stays whole, however short (a start transient's slivers).
+      if (std::none_of(holes.begin(), holes.end(), [&](const TimeHole& hole) {
+            return hole.t0 < segment.t1 && hole.t1 + margin > segment.t0;
+          })) {
+        pieces.push_back(segment);
+        continue;
+      }
       double from = segment.t0;
       for (const TimeHole& hole : holes) {
         if (hole.t0 >= segment.t1 || hole.t1 + margin <= from) continue;  // outside what is left of it
@@ -187,6 +197,26 @@ std::vector<double> normalisedCumulative(const std::vector<double>& times, const
   for (double& v : c) v = total > 0.0 ? v / total : 0.0;
   return c;
 }
+
+}  // namespace
+
+bool startsWithTransient(const LogSignals& log, const SimConfig& config) {
+  const auto& times = log.times();
+  const double span = log.end() - log.start();
+  if (times.size() < 3 || !(span > kStartTransientWindow)) return false;
+  const auto kinds = excitations(log, config);
+  if (kinds.empty()) return false;
+  double share = 0.0;
+  for (const auto& [name, values] : kinds) {
+    const std::vector<double> c = normalisedCumulative(times, values, 0);
+    const auto end = std::lower_bound(times.begin(), times.end(), log.start() + kStartTransientWindow);
+    share += c[static_cast<std::size_t>(std::min<std::ptrdiff_t>(end - times.begin(), times.size() - 1))];
+  }
+  share /= static_cast<double>(kinds.size());
+  return share >= kStartTransientShare && share >= kStartTransientRatio * kStartTransientWindow / span;
+}
+
+namespace {
 
 /// Excitation-balanced block boundaries of one log from `t0` on (see DataSplit).
 std::vector<double> balancedBoundaries(const LogSignals& log, const SimConfig& config, double t0,
@@ -280,7 +310,16 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
     for (const auto& run : train_runs) {
       const auto& log = run.log;
       Dataset tr{log, run.config, {}}, ho{log, run.config, {}};
-      const std::vector<double> bounds = balancedBoundaries(*log, *run.config, log->start() + options.start_margin, options);
+      // A start transient in alternating slivers, then the blocks from its end (startsWithTransient).
+      const bool transient = startsWithTransient(*log, *run.config);
+      std::vector<double> slivers;
+      if (transient) {
+        const int n = static_cast<int>(std::lround(kStartTransientWindow / kStartSliver));
+        for (int k = 0; k < n; ++k) slivers.push_back(log->start() + k * kStartSliver);
+      }
+      const double blocks_from = log->start() + (transient ? kStartTransientWindow : options.start_margin);
+      std::vector<double> bounds = slivers;
+      for (double b : balancedBoundaries(*log, *run.config, blocks_from, options)) bounds.push_back(b);
       for (std::size_t b = 0; b + 1 < bounds.size(); ++b) {
         (b % 2 == 0 ? tr : ho).segments.push_back({bounds[b], bounds[b + 1]});
       }
@@ -293,7 +332,11 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
       }
       auto tenths = [](double s) { return formatNumber(std::round(10.0 * s) / 10.0); };
       split.held_blocks.push_back(log->log().source + " (the odd ones of " + std::to_string(bounds.size() - 1) +
-                                  " blocks balanced in excitation, " + tenths(shortest) + "-" + tenths(longest) + " s)");
+                                  " blocks balanced in excitation, " + tenths(shortest) + "-" + tenths(longest) + " s" +
+                                  (transient ? "; the first " + tenths(kStartTransientWindow) +
+                                                   " s, a start transient, in slivers of " + formatNumber(kStartSliver) + " s"
+                                             : std::string()) +
+                                  ")");
     }
     cutAtHoles(&split.train, options.start_margin);
     cutAtHoles(&split.held, options.start_margin);

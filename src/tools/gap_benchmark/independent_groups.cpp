@@ -245,10 +245,46 @@ void sensorErrors(GroupBuilder& b) {
             {"vehicle.speed=18"});
 }
 
+// ---- The start of a log (issue 47, kind 2): a large initial correction that a torque limit cuts in the
+// first half second (the nominal loop's torque after a 2 m offset: 795 N m at t = 0, above 48 N m until
+// t = 0.5 s, then within 52 N m), and what it looks like with nothing wrong. The limit acts almost only
+// there: after the transient the loop never reaches it again.
+void startOfALog(GroupBuilder& b) {
+  b.group("start of a log");
+  auto limit = [](double newton_metres) {
+    return std::vector<std::string>{"steering.saturation=soft", "steering.torque_limit=" + num(newton_metres)};
+  };
+  const std::vector<std::string> straight{"tracker.excitation_amplitude=0.004"};
+  auto with = [](std::vector<std::string> a, const std::vector<std::string>& more) {
+    a.insert(a.end(), more.begin(), more.end());
+    return a;
+  };
+  b.add("torque_limit-start-2m-straight-500Hz", "in_list", "torque_limit", "", "48 N m", "straight", limit(48.0),
+        with(straight, {"simulation.initial.y=2"}), 500.0);
+  b.add("torque_limit-start-minus2.5m-straight-100Hz", "in_list", "torque_limit", "", "60 N m", "straight", limit(60.0),
+        with(straight, {"simulation.initial.y=-2.5", "actuator.p=1250"}), 100.0);
+  b.add("torque_limit-start-1.5m-straight-1kHz", "in_list", "torque_limit", "", "36 N m", "straight", limit(36.0),
+        with(straight, {"simulation.initial.y=1.5", "actuator.p=1500"}), 1000.0);
+  // A training run that barely reaches the limit, a held-out run that starts with the correction.
+  BenchmarkCase& pair = b.add("torque_limit-start-pair-sinusoid-straight", "in_list", "torque_limit", "", "48 N m",
+                              "sinusoid", limit(48.0), {});
+  pair.heldout_manoeuvre = "straight";
+  pair.heldout_setup = with(straight, {"simulation.initial.y=2"});
+  // The same corrections with nothing wrong: the start's transient alone must raise no alarm.
+  b.none("none-start-2m-straight-500Hz", "straight", with(straight, {"simulation.initial.y=2"}), 500.0);
+  b.none("none-start-minus2.5m-straight-100Hz", "straight", with(straight, {"simulation.initial.y=-2.5", "actuator.p=1250"}),
+         100.0);
+  b.none("none-start-1.5m-straight-1kHz", "straight", with(straight, {"simulation.initial.y=1.5", "actuator.p=1500"}),
+         1000.0);
+  BenchmarkCase& none_pair = b.none("none-start-pair-sinusoid-straight", "sinusoid", {});
+  none_pair.heldout_manoeuvre = "straight";
+  none_pair.heldout_setup = with(straight, {"simulation.initial.y=2"});
+}
+
 }  // namespace
 
 const std::vector<std::string>& independentGroupNames() {
-  static const std::vector<std::string> names{"sensor errors"};
+  static const std::vector<std::string> names{"sensor errors", "start of a log"};
   return names;
 }
 
@@ -256,6 +292,7 @@ std::vector<BenchmarkCase> independentGroupCases() {
   std::vector<BenchmarkCase> cases;
   GroupBuilder b(cases);
   sensorErrors(b);
+  startOfALog(b);
   return cases;
 }
 

@@ -59,8 +59,16 @@ TEST(DataSplit, AStartingTransientLiesOnBothSides) {
     EXPECT_GT(share, 0.3) << kind;
     EXPECT_LT(share, 0.7) << kind;
   }
+  // The first 2 s, a start transient (startsWithTransient), alternate in slivers; every block after them
+  // is at least min_block_length long.
   for (const auto& set : {split.train[0], split.held[0]}) {
-    for (const auto& s : set.segments) EXPECT_GE(s.t1 - s.t0, options.min_block_length - 1e-9);
+    for (const auto& s : set.segments) {
+      if (s.t1 <= kStartTransientWindow + 1e-9) {
+        EXPECT_NEAR(s.t1 - s.t0, kStartSliver, 1e-9);
+      } else {
+        EXPECT_GE(s.t1 - s.t0, options.min_block_length - 1e-9);
+      }
+    }
   }
 }
 
@@ -115,7 +123,7 @@ TEST(DataSplit, NoSegmentSpansAHoleAndEachStartsAMarginAfterIt) {
         for (const TimeSegment& s : set.segments) {
           EXPECT_TRUE(s.t1 <= 11.99 + 1e-9 || s.t0 >= 17.0 + options.start_margin - 1e-9)
               << split.method << ": segment " << s.t0 << "-" << s.t1;
-          EXPECT_GE(s.t1 - s.t0, kMinPieceBetweenHoles - 1e-9);
+          if (s.t1 > kStartTransientWindow + 1e-9) EXPECT_GE(s.t1 - s.t0, kMinPieceBetweenHoles - 1e-9);  // not a sliver
         }
       }
     }
@@ -124,6 +132,7 @@ TEST(DataSplit, NoSegmentSpansAHoleAndEachStartsAMarginAfterIt) {
   const std::vector<Dataset> whole = wholeLogs({holed}, options.start_margin);
   ASSERT_EQ(whole.size(), 1u);
   ASSERT_EQ(whole[0].segments.size(), 2u);
+  EXPECT_NEAR(whole[0].segments[0].t0, 0.0, 1e-9);  // from the first sample: the run starts with a transient
   EXPECT_NEAR(whole[0].segments[0].t1, 11.99, 1e-9);
   EXPECT_NEAR(whole[0].segments[1].t0, 17.6, 1e-9);
 }
