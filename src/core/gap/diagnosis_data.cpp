@@ -82,7 +82,7 @@ std::set<std::string> availableSubsystems(const std::vector<RunData>& runs) {
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin) {
   std::vector<Dataset> out;
   for (const auto& run : runs) {
-    const double from = run.log->start() + (startsWithTransient(*run.log, *run.config) ? 0.0 : margin);
+    const double from = run.log->start() + (startsWithTransient(*run.log, *run.config) ? kStartTransientLead : margin);
     out.push_back({run.log, run.config, {{from, run.log->end() + 1e-9}}});
   }
   cutAtHoles(&out, margin);
@@ -314,8 +314,11 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
       const bool transient = startsWithTransient(*log, *run.config);
       std::vector<double> slivers;
       if (transient) {
+        slivers.push_back(log->start() + kStartTransientLead);
         const int n = static_cast<int>(std::lround(kStartTransientWindow / kStartSliver));
-        for (int k = 0; k < n; ++k) slivers.push_back(log->start() + k * kStartSliver);
+        for (int k = 1; k < n; ++k) {
+          if (k * kStartSliver > kStartTransientLead) slivers.push_back(log->start() + k * kStartSliver);
+        }
       }
       const double blocks_from = log->start() + (transient ? kStartTransientWindow : options.start_margin);
       std::vector<double> bounds = slivers;
@@ -333,7 +336,7 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
       auto tenths = [](double s) { return formatNumber(std::round(10.0 * s) / 10.0); };
       split.held_blocks.push_back(log->log().source + " (the odd ones of " + std::to_string(bounds.size() - 1) +
                                   " blocks balanced in excitation, " + tenths(shortest) + "-" + tenths(longest) + " s" +
-                                  (transient ? "; the first " + tenths(kStartTransientWindow) +
+                                  (transient ? "; " + formatNumber(kStartTransientLead) + "-" + tenths(kStartTransientWindow) +
                                                    " s, a start transient, in slivers of " + formatNumber(kStartSliver) + " s"
                                              : std::string()) +
                                   ")");

@@ -64,7 +64,7 @@ TEST(DataSplit, AStartingTransientLiesOnBothSides) {
   for (const auto& set : {split.train[0], split.held[0]}) {
     for (const auto& s : set.segments) {
       if (s.t1 <= kStartTransientWindow + 1e-9) {
-        EXPECT_NEAR(s.t1 - s.t0, kStartSliver, 1e-9);
+        EXPECT_NEAR(s.t1 - s.t0, s.t0 < kStartSliver ? kStartSliver - kStartTransientLead : kStartSliver, 1e-9);
       } else {
         EXPECT_GE(s.t1 - s.t0, options.min_block_length - 1e-9);
       }
@@ -132,7 +132,7 @@ TEST(DataSplit, NoSegmentSpansAHoleAndEachStartsAMarginAfterIt) {
   const std::vector<Dataset> whole = wholeLogs({holed}, options.start_margin);
   ASSERT_EQ(whole.size(), 1u);
   ASSERT_EQ(whole[0].segments.size(), 2u);
-  EXPECT_NEAR(whole[0].segments[0].t0, 0.0, 1e-9);  // from the first sample: the run starts with a transient
+  EXPECT_NEAR(whole[0].segments[0].t0, kStartTransientLead, 1e-9);  // the run starts with a transient
   EXPECT_NEAR(whole[0].segments[0].t1, 11.99, 1e-9);
   EXPECT_NEAR(whole[0].segments[1].t0, 17.6, 1e-9);
 }

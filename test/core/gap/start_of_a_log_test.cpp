@@ -1,5 +1,5 @@
 // The start of a log (issue 47, kind 2; diagnosis_data.h, startsWithTransient): a run that starts with a
-// large correction keeps its first seconds, in slivers on both sides of a single log's split, so that an
+// large correction keeps its first seconds (from 0.1 s), in slivers on both sides of a single log's split, so that an
 // effect acting only there is seen on held-out data — and the same correction with nothing wrong raises
 // no alarm.
 #include <gtest/gtest.h>
@@ -57,23 +57,25 @@ TEST(StartOfALog, ATransientIsFoundWhereTheStartHoldsTheExcitationOnly) {
   EXPECT_FALSE(startsWithTransient(LogSignals(short_log), *offset.config));
 }
 
-TEST(StartOfALog, ItsSliversLieOnBothSidesFromTheFirstSample) {
+TEST(StartOfALog, ItsSliversLieOnBothSidesFromTheLead) {
   const DiagnosisOptions options;
   const RunData offset = runOf(groupCase("none-start-2m-straight-500Hz"));
   const RunData sinusoid = runOf(groupCase("none-start-pair-sinusoid-straight"));
   const double t0 = offset.log->start();
-  // One run: the first 2 s alternate in 0.25 s slivers, training first; then the balanced blocks.
+  // One run: the first 2 s alternate in 0.25 s slivers from the lead (0.1 s), training first; then the
+  // balanced blocks.
   const DataSplit one = splitData({offset}, {}, options);
   ASSERT_EQ(one.train.size(), 1u);
   ASSERT_EQ(one.held.size(), 1u);
-  EXPECT_NEAR(one.train[0].segments.front().t0, t0, 1e-12);
+  EXPECT_NEAR(one.train[0].segments.front().t0, t0 + kStartTransientLead, 1e-12);
+  EXPECT_NEAR(one.train[0].segments.front().t1, t0 + kStartSliver, 1e-12);
   EXPECT_NEAR(timeWithin(one.held, t0, t0 + 0.5), 0.25, 1e-9);  // the margin of 0.6 s left none of it
   EXPECT_NEAR(timeWithin(one.held, t0, t0 + kStartTransientWindow), 0.5 * kStartTransientWindow, 1e-9);
   EXPECT_NE(one.held_blocks.front().find("a start transient, in slivers of 0.25 s"), std::string::npos)
       << one.held_blocks.front();
-  // Runs: the one that starts with a transient from its first sample, the other after the margin.
+  // Runs: the one that starts with a transient from the lead, the other after the margin.
   const DataSplit pair = splitData({sinusoid}, {offset}, options);
-  EXPECT_NEAR(pair.held[0].segments.front().t0, t0, 1e-12);
+  EXPECT_NEAR(pair.held[0].segments.front().t0, t0 + kStartTransientLead, 1e-12);
   EXPECT_NEAR(pair.train[0].segments.front().t0, sinusoid.log->start() + options.start_margin, 1e-12);
   // A run without a transient is split as before: blocks from the margin, none shorter than the minimum.
   const DataSplit quiet = splitData({sinusoid}, {}, options);
