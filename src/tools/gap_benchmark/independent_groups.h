@@ -1,7 +1,7 @@
 #pragma once
 /// The groups of the independent benchmark family, each scored in its own table (BenchmarkCase::group;
 /// docs/gap.md, "Sensor errors in the independent family", "The start of a log"). Issue 46 item 7 and
-/// issue 47 kind 2:
+/// issue 47 kinds 1 and 2:
 ///
 ///   sensor errors   a yaw-rate, steering-angle and lateral-acceleration offset, a heading mount, a yaw-rate
 ///                   and a steering-angle latency, a gyro scale and a steering ratio, each on two runs (once
@@ -12,6 +12,9 @@
 ///   start of a log  a soft torque limit (36-60 N m) that only the correction of a 1.5-2.5 m initial offset
 ///                   reaches, in its first half second: three single runs (100 Hz-1 kHz) and a pair whose
 ///                   held-out run starts with the correction; the same four set-ups with nothing wrong
+///   one run excites weakly  a cornering stiffness 15 % / 10 % low and a 0.9 m tire relaxation length in both
+///                   runs of a pair, one of which (held out or training) is a quiet straight road; the
+///                   same three pairs of roads with nothing wrong
 ///
 /// Seeds from 20001 on: none of these logs is one anything was tuned on.
 #include <string>
