@@ -52,8 +52,8 @@ struct Dataset {
 /// invisible anywhere else. A run *starts with a transient* when its first kStartTransientWindow seconds
 /// hold at least kStartTransientShare of its excitation (the mean over the kinds of `excitations` of each
 /// one's share) and at least kStartTransientRatio times their share of its duration. On the two benchmark
-/// families: every run from a 1.5-3 m offset on a straight road (shares 0.35-0.6), none of the lane
-/// changes, sinusoids and bends that start on the lane (0.07-0.3, at most 3.0 times their time share).
+/// families: the runs from offsets of 1.5-3 m (shares 0.35-0.6), none of the runs that start on the lane
+/// (at most 0.3, and at most 3.0 times their time share).
 constexpr double kStartTransientWindow = 2.0;  ///< [s]
 constexpr double kStartTransientShare = 0.3;
 constexpr double kStartTransientRatio = 3.0;
