@@ -313,10 +313,27 @@ void oneRunWeak(GroupBuilder& b) {
   pair("none-weak-bend-lane_change", "none", "none", "", "bend", {}, {}, "lane_change", {});
 }
 
+// ---- Delays near the stability margin (issue 47, kind 3): an extra actuation delay on a strong steering loop
+// (p = 2000 goes unstable near 1.8 ms) at 1 kHz, 500 Hz and 100 Hz (where the loop's fast mode lies above
+// Nyquist); and the same set-ups with nothing wrong.
+void delaysNearTheMargin(GroupBuilder& b) {
+  b.group("delays near the margin");
+  b.add("actuation_delay-margin-0.9ms-p2000-lane_change-1kHz", "in_list", "actuation_delay", "", "+0.9 ms", "lane_change",
+        {"delays.torque_to_plant=0.0009"}, {"actuator.p=2000"}, 1000.0);
+  b.add("actuation_delay-margin-1.4ms-p2000-bend-500Hz", "in_list", "actuation_delay", "", "+1.4 ms", "bend",
+        {"delays.torque_to_plant=0.0014"}, {"actuator.p=2000"}, 500.0);
+  b.add("actuation_delay-margin-1.4ms-p2000-sinusoid-100Hz", "in_list", "actuation_delay", "", "+1.4 ms", "sinusoid",
+        {"delays.torque_to_plant=0.0014"}, {"actuator.p=2000"}, 100.0);
+  b.none("none-margin-p2000-lane_change-1kHz", "lane_change", {"actuator.p=2000"}, 1000.0);
+  b.none("none-margin-p2000-bend-500Hz", "bend", {"actuator.p=2000"}, 500.0);
+  b.none("none-margin-p2000-sinusoid-100Hz", "sinusoid", {"actuator.p=2000"}, 100.0);
+}
+
 }  // namespace
 
 const std::vector<std::string>& independentGroupNames() {
-  static const std::vector<std::string> names{"sensor errors", "start of a log", "one run excites weakly"};
+  static const std::vector<std::string> names{"sensor errors", "start of a log", "one run excites weakly",
+                                              "delays near the margin"};
   return names;
 }
 
@@ -326,6 +343,7 @@ std::vector<BenchmarkCase> independentGroupCases() {
   sensorErrors(b);
   startOfALog(b);
   oneRunWeak(b);
+  delaysNearTheMargin(b);
   return cases;
 }
 
