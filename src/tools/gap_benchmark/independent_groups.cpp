@@ -324,6 +324,15 @@ void delaysNearTheMargin(GroupBuilder& b) {
         {"delays.torque_to_plant=0.0014"}, {"actuator.p=2000"}, 500.0);
   b.add("actuation_delay-margin-1.4ms-p2000-sinusoid-100Hz", "in_list", "actuation_delay", "", "+1.4 ms", "sinusoid",
         {"delays.torque_to_plant=0.0014"}, {"actuator.p=2000"}, 100.0);
+  // The same delays where a start step rings the loop (the paper's set-up: p = 2000, a 1 m offset on a straight
+  // road): +1.7 ms moves the torque by 11 N m RMS over the run, 5 N m after its first 0.1 s (noise-free).
+  const std::vector<std::string> step{"actuator.p=2000", "simulation.initial.y=1"};
+  b.add("actuation_delay-margin-1.7ms-p2000-straight1m-100Hz", "in_list", "actuation_delay", "", "+1.7 ms", "straight",
+        {"delays.torque_to_plant=0.0017"}, step, 100.0);
+  b.add("actuation_delay-margin-0.9ms-p2000-straight1m-1kHz", "in_list", "actuation_delay", "", "+0.9 ms", "straight",
+        {"delays.torque_to_plant=0.0009"}, step, 1000.0);
+  b.none("none-margin-p2000-straight1m-100Hz", "straight", step, 100.0);
+  b.none("none-margin-p2000-straight1m-1kHz", "straight", step, 1000.0);
   b.none("none-margin-p2000-lane_change-1kHz", "lane_change", {"actuator.p=2000"}, 1000.0);
   b.none("none-margin-p2000-bend-500Hz", "bend", {"actuator.p=2000"}, 500.0);
   b.none("none-margin-p2000-sinusoid-100Hz", "sinusoid", {"actuator.p=2000"}, 100.0);
