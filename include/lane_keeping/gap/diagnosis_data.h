@@ -73,8 +73,8 @@ constexpr double kStartSliver = 0.25;  ///< [s]
 constexpr double kStartTransientLead = 0.1;  ///< [s]
 bool startsWithTransient(const LogSignals& log, const SimConfig& config);
 
-/// Each run whole, from `margin` seconds after its start (kStartTransientLead if it starts with a
-/// transient), less its holes (cutAtHoles).
+/// Each run whole, from `margin` seconds after its start (at most kStartTransientLead if it starts with
+/// a transient), less its holes (cutAtHoles).
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin);
 
 /// The data sets' segments with each hole of their log's time axis (timeHoles, input_checks.h) cut out,

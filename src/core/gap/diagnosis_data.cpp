@@ -82,7 +82,10 @@ std::set<std::string> availableSubsystems(const std::vector<RunData>& runs) {
 std::vector<Dataset> wholeLogs(const std::vector<RunData>& runs, double margin) {
   std::vector<Dataset> out;
   for (const auto& run : runs) {
-    const double from = run.log->start() + (startsWithTransient(*run.log, *run.config) ? kStartTransientLead : margin);
+    // (A margin of 0 stays 0: "how far" reads the lateral velocity at the log's first sample, where its
+    // closed loops start.)
+    const double skip = startsWithTransient(*run.log, *run.config) ? std::min(margin, kStartTransientLead) : margin;
+    const double from = run.log->start() + skip;
     out.push_back({run.log, run.config, {{from, run.log->end() + 1e-9}}});
   }
   cutAtHoles(&out, margin);

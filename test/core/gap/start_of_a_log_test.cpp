@@ -76,6 +76,8 @@ TEST(StartOfALog, ItsSliversLieOnBothSidesFromTheLead) {
   // Runs: the one that starts with a transient from the lead, the other after the margin.
   const DataSplit pair = splitData({sinusoid}, {offset}, options);
   EXPECT_NEAR(pair.held[0].segments.front().t0, t0 + kStartTransientLead, 1e-12);
+  // "How far" asks for the whole run (margin 0): it gets it from the first sample, transient or not.
+  EXPECT_NEAR(wholeLogs({offset}, 0.0)[0].segments.front().t0, t0, 1e-12);
   EXPECT_NEAR(pair.train[0].segments.front().t0, sinusoid.log->start() + options.start_margin, 1e-12);
   // A run without a transient is split as before: blocks from the margin, none shorter than the minimum.
   const DataSplit quiet = splitData({sinusoid}, {}, options);
