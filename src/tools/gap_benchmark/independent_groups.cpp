@@ -39,6 +39,12 @@ class GroupBuilder {
                       double log_rate = 0.0) {
     return add(id, "none", "none", "", "", manoeuvre, {}, std::move(setup), log_rate);
   }
+  /// Gives `c` a held-out run on `manoeuvre` with the scenario keys `setup` (heldoutRunOf).
+  static BenchmarkCase& heldOutOn(BenchmarkCase& c, const std::string& manoeuvre, std::vector<std::string> setup) {
+    c.heldout_manoeuvre = manoeuvre;
+    c.heldout_setup = std::move(setup);
+    return c;
+  }
   /// Two (or more) hidden effects at once: the first is `truth`.
   BenchmarkCase& several(const std::string& id, std::vector<TruthEffect> truths, const std::string& magnitude,
                          const std::string& manoeuvre, std::vector<std::string> overlay, std::vector<std::string> setup,
@@ -255,30 +261,24 @@ void startOfALog(GroupBuilder& b) {
     return std::vector<std::string>{"steering.saturation=soft", "steering.torque_limit=" + num(newton_metres)};
   };
   const std::vector<std::string> straight{"tracker.excitation_amplitude=0.004"};
-  auto with = [](std::vector<std::string> a, const std::vector<std::string>& more) {
-    a.insert(a.end(), more.begin(), more.end());
-    return a;
-  };
   b.add("torque_limit-start-2m-straight-500Hz", "in_list", "torque_limit", "", "48 N m", "straight", limit(48.0),
-        with(straight, {"simulation.initial.y=2"}), 500.0);
+        joined(straight, {"simulation.initial.y=2"}), 500.0);
   b.add("torque_limit-start-minus2.5m-straight-100Hz", "in_list", "torque_limit", "", "60 N m", "straight", limit(60.0),
-        with(straight, {"simulation.initial.y=-2.5", "actuator.p=1250"}), 100.0);
+        joined(straight, {"simulation.initial.y=-2.5", "actuator.p=1250"}), 100.0);
   b.add("torque_limit-start-1.5m-straight-1kHz", "in_list", "torque_limit", "", "36 N m", "straight", limit(36.0),
-        with(straight, {"simulation.initial.y=1.5", "actuator.p=1500"}), 1000.0);
+        joined(straight, {"simulation.initial.y=1.5", "actuator.p=1500"}), 1000.0);
   // A training run that barely reaches the limit, a held-out run that starts with the correction.
-  BenchmarkCase& pair = b.add("torque_limit-start-pair-sinusoid-straight", "in_list", "torque_limit", "", "48 N m",
-                              "sinusoid", limit(48.0), {});
-  pair.heldout_manoeuvre = "straight";
-  pair.heldout_setup = with(straight, {"simulation.initial.y=2"});
+  GroupBuilder::heldOutOn(b.add("torque_limit-start-pair-sinusoid-straight", "in_list", "torque_limit", "", "48 N m",
+                                "sinusoid", limit(48.0), {}),
+                          "straight", joined(straight, {"simulation.initial.y=2"}));
   // The same corrections with nothing wrong: the start's transient alone must raise no alarm.
-  b.none("none-start-2m-straight-500Hz", "straight", with(straight, {"simulation.initial.y=2"}), 500.0);
-  b.none("none-start-minus2.5m-straight-100Hz", "straight", with(straight, {"simulation.initial.y=-2.5", "actuator.p=1250"}),
+  b.none("none-start-2m-straight-500Hz", "straight", joined(straight, {"simulation.initial.y=2"}), 500.0);
+  b.none("none-start-minus2.5m-straight-100Hz", "straight", joined(straight, {"simulation.initial.y=-2.5", "actuator.p=1250"}),
          100.0);
-  b.none("none-start-1.5m-straight-1kHz", "straight", with(straight, {"simulation.initial.y=1.5", "actuator.p=1500"}),
+  b.none("none-start-1.5m-straight-1kHz", "straight", joined(straight, {"simulation.initial.y=1.5", "actuator.p=1500"}),
          1000.0);
-  BenchmarkCase& none_pair = b.none("none-start-pair-sinusoid-straight", "sinusoid", {});
-  none_pair.heldout_manoeuvre = "straight";
-  none_pair.heldout_setup = with(straight, {"simulation.initial.y=2"});
+  GroupBuilder::heldOutOn(b.none("none-start-pair-sinusoid-straight", "sinusoid", {}), "straight",
+                          joined(straight, {"simulation.initial.y=2"}));
 }
 
 // ---- One run vetoes the other? (issue 47, kind 1): an effect in both runs of a pair, one of which excites
@@ -290,10 +290,10 @@ void oneRunWeak(GroupBuilder& b) {
   auto pair = [&](const std::string& id, const std::string& category, const std::string& truth, const std::string& size,
                   const std::string& manoeuvre, std::vector<std::string> overlay, std::vector<std::string> setup,
                   const std::string& other, std::vector<std::string> other_setup) {
-    BenchmarkCase& c = category == "none" ? b.none(id, manoeuvre, std::move(setup))
-                                          : b.add(id, category, truth, "", size, manoeuvre, std::move(overlay), std::move(setup));
-    c.heldout_manoeuvre = other;
-    c.heldout_setup = std::move(other_setup);
+    GroupBuilder::heldOutOn(category == "none" ? b.none(id, manoeuvre, std::move(setup))
+                                               : b.add(id, category, truth, "", size, manoeuvre, std::move(overlay),
+                                                       std::move(setup)),
+                            other, std::move(other_setup));
   };
   // Cornering stiffness 15 % / 10 % low (the issue's case): strong in training, weak held out; and reversed.
   const std::vector<std::string> stiffness{"tire.front.lateral_stiffness=1.7e6", "tire.rear.lateral_stiffness=1.8e6"};

@@ -180,7 +180,9 @@ TEST(BenchmarkFamily, StartGroupPairsEachLimitWithItsCorrectionAloneAndEveryRunS
     if (c.group != "start of a log") continue;
     const std::string setup = c.id.substr(c.id.find("-start-") + 7);
     (c.category == "none" ? clean : limited)[setup]++;
-    if (c.category != "none") EXPECT_EQ(c.truth, "torque_limit") << c.id;
+    if (c.category != "none") {
+      EXPECT_EQ(c.truth, "torque_limit") << c.id;
+    }
     const BenchmarkCase corrected = c.heldout_manoeuvre.empty() ? c : heldoutRunOf(c);
     const GapLog log = generateBenchmarkLog(corrected, SensorNoise{}, corrected.log_rate > 0.0 ? corrected.log_rate : 500.0);
     EXPECT_TRUE(diagnosis::startsWithTransient(LogSignals(log), benchmarkCaseNominal(corrected))) << corrected.id;

@@ -123,7 +123,9 @@ TEST(DataSplit, NoSegmentSpansAHoleAndEachStartsAMarginAfterIt) {
         for (const TimeSegment& s : set.segments) {
           EXPECT_TRUE(s.t1 <= 11.99 + 1e-9 || s.t0 >= 17.0 + options.start_margin - 1e-9)
               << split.method << ": segment " << s.t0 << "-" << s.t1;
-          if (s.t1 > kStartTransientWindow + 1e-9) EXPECT_GE(s.t1 - s.t0, kMinPieceBetweenHoles - 1e-9);  // not a sliver
+          if (s.t1 > kStartTransientWindow + 1e-9) {  // not a sliver
+            EXPECT_GE(s.t1 - s.t0, kMinPieceBetweenHoles - 1e-9);
+          }
         }
       }
     }

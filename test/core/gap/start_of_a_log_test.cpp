@@ -27,7 +27,10 @@ BenchmarkCase groupCase(const std::string& id) {
 
 RunData runOf(const BenchmarkCase& c) {
   const GapLog log = generateBenchmarkLog(c, SensorNoise{}, c.log_rate > 0.0 ? c.log_rate : 500.0);  // 0: the default
-  return {std::make_shared<const LogSignals>(log), std::make_shared<const SimConfig>(benchmarkCaseNominal(c))};
+  RunData run;
+  run.log = std::make_shared<const LogSignals>(log);
+  run.config = std::make_shared<const SimConfig>(benchmarkCaseNominal(c));
+  return run;
 }
 
 double timeWithin(const std::vector<Dataset>& sets, double t0, double t1) {
