@@ -34,7 +34,10 @@ GapLog transientLog(const std::string& name, double duration = 30.0) {
 }
 
 RunData run(const GapLog& log) {
-  return {std::make_shared<const LogSignals>(log), std::make_shared<const SimConfig>()};
+  RunData out;
+  out.log = std::make_shared<const LogSignals>(log);
+  out.config = std::make_shared<const SimConfig>();
+  return out;
 }
 
 double heldTimeBefore(const DataSplit& split, double t_end) {

@@ -154,7 +154,9 @@ TEST(RealLogDiagnosis, TheActuatorReplayTakesTheIntegralAfterAHoleAsUnknown) {
   const GapLog holed = rowsOf(whole, 8.0, 13.0);
   const SimConfig nominal = sinusoidNominal(20.0);
   auto excess = [&](const GapLog& log) {
-    const diagnosis::RunData run{std::make_shared<const LogSignals>(log), std::make_shared<const SimConfig>(nominal), {}};
+    diagnosis::RunData run;
+    run.log = std::make_shared<const LogSignals>(log);
+    run.config = std::make_shared<const SimConfig>(nominal);
     return scoreReplay(replayActuator(nominal, *run.log, diagnosis::wholeLogs({run}, 0.6)[0].segments)).excess;
   };
   const double without_hole = excess(whole), with_hole = excess(holed);

@@ -6,8 +6,8 @@
 /// yaw acceleration. That part of the residual is smooth, so the white-noise floor of gap_metrics.h
 /// does not remove it, and no model change can: it is there even when the model is exactly right.
 /// The reference measures it on the log's own terms: the nominal closed loop simulated over the log's
-/// span at the log's sampling, with white noise at the levels estimated from the log (fourth
-/// differences), replayed exactly like the log. Its excess per subsystem is the part of the gap a
+/// span at the log's sampling, with white noise at the levels estimated from the log (the upper half of
+/// each channel's band, band_noise.h), replayed exactly like the log. Its excess per subsystem is the part of the gap a
 /// perfect model would leave (the diagnosis takes the largest of a few draws: the excess of a noise-only
 /// replay is 0 or a few thousandths, depending on the draw). Measured on the gap benchmark's 12 no-effect logs: steering excess
 /// 0.0018-0.0035 (the reference gives 0.0022-0.0035 for the same manoeuvres), chassis 0-0.003 (a
@@ -41,7 +41,8 @@ struct SensorNoise {
 /// channel's level, or noise of its character (quantised, held, coloured) where it has one.
 void addSensorNoise(GapLog& log, const SensorNoise& noise, unsigned seed);
 
-/// The noise a log shows: white levels from fourth differences (LogSignals::noise), and each channel's
+/// The noise a log shows: white levels from the upper half of each channel's band (upperBandNoise, robust
+/// to a loop's fast ringing and a start transient; LogSignals::noise where a channel is too short), and each channel's
 /// character (estimateCharacter) where it is more than white noise. `nominal`, if given, is the noise-free
 /// nominal run over the log's span (nominalReferenceLog): its columns, at the log's times, take the
 /// nominal motion out of a characterised channel's level and colour. Give it only the columns the model

@@ -7,8 +7,10 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/time.h"
+#include "lane_keeping/gap/log/band_noise.h"
 #include "lane_keeping/gap/log/linear_resample.h"
 #include "lane_keeping/gap/log/logged_speed.h"
+#include "lane_keeping/gap/log/time_holes.h"
 #include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {
@@ -37,15 +39,23 @@ void addSensorNoise(GapLog& g, const SensorNoise& n, unsigned seed) {
 SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal) {
   using C = LogSignals;
   SensorNoise n;
+  // White levels from the upper half of each channel's band (band_noise.h): the fourth differences of
+  // LogSignals::noise read a steering loop's fast ringing and a start transient as noise (132x the torque
+  // noise on a log 1.7 ms from the margin), and draws that noisy hide what the ringing shows. Where a
+  // channel is too short for the band's cells, the fourth differences' estimate.
+  const auto stretches = holeFreeStretches(log.times());
+  auto white = [&](C::Channel c) {
+    return log.has(c) ? upperBandNoise(log.samples(c), stretches).value_or(log.noise(c)) : log.noise(c);
+  };
   // x and y share one sensor; the larger estimate is the safer one (a curving path inflates neither much).
-  n.position = std::max(log.noise(C::kX), log.noise(C::kY));
-  n.heading = log.noise(C::kPsi);
-  n.yaw_rate = log.noise(C::kYawRate);
-  n.steering = log.noise(C::kDelta);
-  n.torque = log.noise(C::kTorque);
-  n.steering_rate = log.log().hasSteeringRate() ? log.noise(C::kDeltaRate) : 0.0;
-  n.lateral_acceleration = log.log().hasLateralAcceleration() ? log.noise(C::kLateralAcceleration) : 0.0;
-  n.speed = log.log().hasSpeed() ? log.noise(C::kSpeed) : 0.0;
+  n.position = std::max(white(C::kX), white(C::kY));
+  n.heading = white(C::kPsi);
+  n.yaw_rate = white(C::kYawRate);
+  n.steering = white(C::kDelta);
+  n.torque = white(C::kTorque);
+  n.steering_rate = log.log().hasSteeringRate() ? white(C::kDeltaRate) : 0.0;
+  n.lateral_acceleration = log.log().hasLateralAcceleration() ? white(C::kLateralAcceleration) : 0.0;
+  n.speed = log.log().hasSpeed() ? white(C::kSpeed) : 0.0;
   for (auto [column, channel, white] :
        {std::tuple<const char*, C::Channel, double>{"x", C::kX, n.position}, {"y", C::kY, n.position},
         {"psi", C::kPsi, n.heading}, {"yaw_rate", C::kYawRate, n.yaw_rate}, {"delta", C::kDelta, n.steering},

@@ -21,7 +21,9 @@ TEST(WhereAnalysis, TheRegimeBinsTakeTheLoggedSpeed) {
   for (double& v : log.v) v = 30.0;
   SimConfig nominal = benchmarkNominal("lane_change");
   nominal.simulation.duration = 16.0;
-  const diagnosis::RunData run{std::make_shared<const LogSignals>(log), std::make_shared<const SimConfig>(nominal), {}};
+  diagnosis::RunData run;
+  run.log = std::make_shared<const LogSignals>(log);
+  run.config = std::make_shared<const SimConfig>(nominal);
   const std::vector<diagnosis::Dataset> data = diagnosis::wholeLogs({run}, 0.6);
   const diagnosis::Evaluation ev = diagnosis::evaluate(nullptr, data, {"chassis"}, ReplayOptions{});
   const GapWhere where = diagnosis::whereAnalysis(ev, data, 0.2, nullptr);

@@ -1,0 +1,65 @@
+#include "lane_keeping/gap/log/band_noise.h"
+
+#include <algorithm>
+#include <cmath>
+#include <complex>
+
+#include <unsupported/Eigen/FFT>
+
+namespace lane_keeping {
+namespace {
+
+/// The median (of an even count, the mean of the middle two); reorders `v`.
+double medianOf(std::vector<double>& v) {
+  const std::size_t m = v.size() / 2;
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
+  const double upper = v[m];
+  if (v.size() % 2 == 1) return upper;
+  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m)));
+}
+
+}  // namespace
+
+std::optional<double> upperBandNoise(const std::vector<double>& values,
+                                     const std::vector<std::pair<std::size_t, std::size_t>>& stretches) {
+  constexpr std::size_t n = kBandSegment;
+  std::vector<double> window(n), gain(n / 2 + 1, 0.0);
+  double window_power = 0.0;
+  for (std::size_t i = 0; i < n; ++i) {
+    window[i] = 0.5 - 0.5 * std::cos(2.0 * M_PI * static_cast<double>(i) / static_cast<double>(n - 1));
+    window_power += window[i] * window[i];
+  }
+  const std::size_t first_bin = n / 4, end_bin = n / 2;  // [1/4, 1/2) cycles per sample; Nyquist's bin is real
+  for (std::size_t k = first_bin; k < end_bin; ++k) {
+    gain[k] = std::pow(2.0 * std::sin(M_PI * static_cast<double>(k) / static_cast<double>(n)), 8);
+  }
+  std::vector<std::pair<std::size_t, std::size_t>> parts = stretches;
+  if (parts.empty()) parts.emplace_back(0, values.size());
+  Eigen::FFT<double> fft;
+  std::vector<std::vector<double>> cells(end_bin - first_bin);  // per bin, one cell per segment
+  std::vector<double> chunk(n);
+  std::vector<std::complex<double>> spectrum;
+  for (const auto& [begin, end] : parts) {
+    if (end > values.size() || end < begin + n + 4) continue;
+    std::vector<double> d4;  // fourth differences within the stretch
+    d4.reserve(end - begin - 4);
+    for (std::size_t i = begin + 2; i + 2 < end; ++i) {
+      d4.push_back(values[i - 2] - 4.0 * values[i - 1] + 6.0 * values[i] - 4.0 * values[i + 1] + values[i + 2]);
+    }
+    for (std::size_t start = 0; start + n <= d4.size(); start += n / 2) {
+      for (std::size_t i = 0; i < n; ++i) chunk[i] = d4[start + i] * window[i];
+      fft.fwd(spectrum, chunk);
+      for (std::size_t k = first_bin; k < end_bin; ++k) {
+        cells[k - first_bin].push_back(std::norm(spectrum[k]) / window_power / gain[k]);
+      }
+    }
+  }
+  if (cells[0].size() < kBandMinimumSegments) return std::nullopt;
+  std::vector<double> bin_medians;
+  for (std::vector<double>& bin : cells) bin_medians.push_back(medianOf(bin));
+  const double level = medianOf(bin_medians);
+  if (!std::isfinite(level)) return std::nullopt;
+  return std::sqrt(level / std::log(2.0));  // an exponential variable's median is ln 2 of its mean
+}
+
+}  // namespace lane_keeping
