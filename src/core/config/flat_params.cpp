@@ -8,6 +8,7 @@
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/file_identity.h"
 #include "lane_keeping/config/config_text_limits.h"
+#include "lane_keeping/config/unique_keys.h"
 
 namespace lane_keeping {
 namespace {
@@ -67,6 +68,7 @@ void FlatParams::overlayNode(const YAML::Node& root, const std::string& origin) 
     throw ConfigError(std::vector<ConfigProblem>{
         {"", lineOf(origin, root.Mark()), "the top level must be a mapping of sections (vehicle:, tire:, ...)"}});
   }
+  checkUniqueKeys(root, origin);  // yaml-cpp keeps both entries of a key given twice (unique_keys.h)
   flatten(root, "", origin);
 }
 

@@ -150,6 +150,25 @@ TEST(ConfigErrors, AKeyThatIsNotANameNamesFileAndLine) {
   EXPECT_NE(error.find("a key must be a name"), std::string::npos) << error;
 }
 
+// A key given twice in one mapping (unique_keys.h; found by the log_mapping fuzz target,
+// fuzz/regressions/log_mapping/duplicate_columns_key.yaml): yaml-cpp kept both, and the configuration took
+// the second `vehicle:` section's mass without a word.
+TEST(ConfigErrors, AKeyGivenTwiceInOneMappingNamesBothLines) {
+  const std::string file = writeTemp("twice.yaml", "vehicle:\n  mass: 1000\ntracker:\n  k_y: 0.1\nvehicle:\n  mass: 2000\n");
+  std::string error = errorOf({file});
+  EXPECT_NE(error.find("twice.yaml:5"), std::string::npos) << error;
+  EXPECT_NE(error.find("vehicle is given twice in one mapping (first at line 1)"), std::string::npos) << error;
+  // Below the top level, and in a list's mapping.
+  error = errorOf({writeTemp("twice_nested.yaml", "tracker:\n  k_y: 0.1\n  k_psi: 0.8\n  k_y: 0.2\n")});
+  EXPECT_NE(error.find("tracker.k_y is given twice in one mapping (first at line 2)"), std::string::npos) << error;
+  error = errorOf({writeTemp("twice_listed.yaml", "changes:\n  - {t: 1, t: 2}\n")});
+  EXPECT_NE(error.find("changes[0].t is given twice"), std::string::npos) << error;
+  // The same key in two files (or a file and --set) is an overlay, not a mistake.
+  EXPECT_EQ(errorOf({writeTemp("once_a.yaml", "vehicle:\n  mass: 1000\n"), writeTemp("once_b.yaml", "vehicle:\n  mass: 1200\n")},
+                    {"vehicle.mass=1300"}),
+            "");
+}
+
 TEST(ConfigErrors, UnknownKeyAndTypeErrorsAreAllReported) {
   const std::string file = writeTemp("typos.yaml", "tracker:\n  k_yy: 0.1\n  k_psi: fast\nvehicle:\n  mass: 0\n");
   const std::string error = errorOf({file});

@@ -7,6 +7,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/unique_keys.h"
 
 namespace lane_keeping {
 namespace {
@@ -169,7 +170,9 @@ LogMapping readLogMapping(const std::string& file) {
   } catch (const YAML::ParserException& e) {
     fail("", file + ":" + std::to_string(e.mark.line + 1), std::string("YAML syntax error: ") + e.msg);
   }
-  if (!root.IsMap() || !root["log"]) return {};
+  if (!root.IsMap()) return {};
+  checkUniqueKeys(root, file);  // a second `log:` or `columns:` was ignored by a lookup (unique_keys.h)
+  if (!root["log"]) return {};
   return logMappingFromYaml(root["log"], file);
 }
 

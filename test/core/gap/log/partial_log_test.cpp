@@ -6,8 +6,10 @@
 #include <cmath>
 #include <fstream>
 
+#include "build_paths.h"
 #include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/evaluation/gap_metrics.h"
 #include "lane_keeping/gap/log/gap_log.h"
@@ -67,6 +69,29 @@ TEST(LogMapping, AListAsAKeyIsAConfigErrorNamingFileAndLine) {
   const std::string error = configError("log:\n  columns:\n    ? [delta]\n    : steering\n");
   EXPECT_NE(error.find("map_bad.yaml:3"), std::string::npos) << error;
   EXPECT_NE(error.find("a key must be a name"), std::string::npos) << error;
+}
+
+// Found by the log_mapping fuzz target (fuzz/regressions/log_mapping/duplicate_columns_key.yaml): a
+// `columns:` given twice. The mapping's reader looked up the first and accepted it, the configuration's
+// reader iterated both and refused a key of the second: the two readers of one `log:` section disagreed,
+// and a mapping could hold what its author did not mean. Both refuse it now, naming both lines.
+TEST(LogMapping, AKeyGivenTwiceIsRefusedByBothReaders) {
+  std::string error = configError("log:\n  columns:\n    x: {column: east}\n  columns:\n    y: {column: north}\n");
+  EXPECT_NE(error.find("map_bad.yaml:4"), std::string::npos) << error;
+  EXPECT_NE(error.find("log.columns is given twice in one mapping (first at line 2)"), std::string::npos) << error;
+  const std::string regression = std::string(build_paths::sourceDir()) + "/fuzz/regressions/log_mapping/duplicate_columns_key.yaml";
+  try {
+    readLogMapping(regression);
+    FAIL() << "readLogMapping accepted a log: section with two columns: keys";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("duplicate_columns_key.yaml:7"), std::string::npos) << e.what();
+  }
+  try {
+    loadSimConfig({regression}, {});
+    FAIL() << "loadSimConfig accepted a log: section with two columns: keys";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("log.columns is given twice"), std::string::npos) << e.what();
+  }
 }
 
 TEST(LogMapping, BadMappingsNameTheFileLineAndKey) {
