@@ -19,6 +19,7 @@
 #include "gap_benchmark/independent_groups.h"
 #include "lane_keeping/config/flat_params.h"
 #include "lane_keeping/gap/diagnosis_data.h"
+#include "lane_keeping/gap/evaluation/loop_ringing.h"
 #include "lane_keeping/gap/evaluation/noise_reference.h"
 #include "lane_keeping/gap/fit/candidate_effects.h"
 #include "lane_keeping/gap/log/gap_run.h"
@@ -214,6 +215,27 @@ TEST(BenchmarkFamily, MarginGroupDrawsCarryTheSensorsNoiseNotTheLoopsRinging) {
     ++checked;
   }
   EXPECT_GE(checked, 4);
+}
+
+TEST(BenchmarkFamily, MarginGroupRingingIsNotedWhereTheLoopRingsAndNotOnItsTwin) {
+  // Issue 47, kind 3: at +1.7 ms the 100 Hz log's torque rings at the loop's fast mode aliased (~129 Hz seen
+  // near 29.5 Hz), which its nominal loop (0.1 ms) does not; its no-effect twin does not ring.
+  int checked = 0;
+  for (const BenchmarkCase& c : independentCases()) {
+    if (c.group != "delays near the margin" || c.id.find("straight1m-100Hz") == std::string::npos) continue;
+    const LogSignals log(generateBenchmarkLog(c, SensorNoise{}, c.log_rate));
+    const GapLog nominal = nominalReferenceLog(benchmarkCaseNominal(c), log);
+    const auto ringing = loopRinging(log, nominal, LogSignals::kTorque, "torque");
+    if (c.category == "none") {
+      EXPECT_FALSE(ringing.has_value()) << c.id << ": " << (ringing ? ringingNote(c.id, *ringing) : "");
+    } else {
+      ASSERT_TRUE(ringing.has_value()) << c.id;
+      EXPECT_NEAR(ringing->frequency, 29.5, 100.0 / 64.0) << ringingNote(c.id, *ringing);
+      EXPECT_GE(ringing->prominence, 1000.0) << ringingNote(c.id, *ringing);
+    }
+    ++checked;
+  }
+  EXPECT_EQ(checked, 2);
 }
 
 TEST(BenchmarkFamily, NewSetUpsRunTheirNominalLoopWithoutDiverging) {

@@ -28,7 +28,9 @@ namespace diagnosis {
 struct NoiseNull {
   std::vector<std::map<std::string, SubsystemScore>> train, held;  ///< per draw that ran
   std::vector<std::map<std::string, ResidualStructure>> held_structure;  ///< per draw, per subsystem
-  std::vector<std::string> notes;  ///< why draws are missing (the nominal loop cannot cover a log)
+  /// Why draws are missing (the nominal loop cannot cover a log); a log's steering-loop ringing that its
+  /// nominal reference lacks (loop_ringing.h).
+  std::vector<std::string> notes;
 
   int draws() const { return static_cast<int>(held.size()); }
   /// Per subsystem: the largest held-out excess over the draws (0 without draws).

@@ -33,7 +33,21 @@ constexpr std::size_t kBandSegment = 64;
 /// At least this many segments (~4.5 segment lengths of samples) for an estimate.
 constexpr std::size_t kBandMinimumSegments = 8;
 
-/// sigma of the white noise in `values` from the upper half of the band, within each [begin, end) of
+/// The upper half band's bins (kBandSegment / 4 of them, from 1/4 cycle per sample up), each over the
+/// segments: the median of its cells (white noise: sigma^2 ln 2 in every bin; a ringing that lasts: more in
+/// its bins) and their mean (white noise: sigma^2; a ringing, lasting or not, adds its power over the log).
+/// Both empty where upperBandNoise gives nullopt. For the loop's ringing (loop_ringing.h).
+struct UpperBand {
+  std::vector<double> median, mean;
+};
+UpperBand upperBand(const std::vector<double>& values,
+                    const std::vector<std::pair<std::size_t, std::size_t>>& stretches = {});
+
+/// [Hz] the centre of the upper band's bin `bin` in a series sampled at `rate` [Hz].
+double upperBandFrequency(std::size_t bin, double rate);
+
+/// sigma of the white noise in `values` from the upper half of the band (the median of upperBand's medians over
+/// ln 2), within each [begin, end) of
 /// `stretches` (a log's hole-free stretches, time_holes.h; empty: the whole series); nullopt where the
 /// stretches hold fewer than kBandMinimumSegments segments, where the caller keeps
 /// the fourth differences' estimate.

@@ -9,6 +9,7 @@
 #include "lane_keeping/common/parallel_for.h"
 #include "lane_keeping/gap/evaluation/evaluation.h"
 #include "lane_keeping/gap/evaluation/input_driven_reference.h"
+#include "lane_keeping/gap/evaluation/loop_ringing.h"
 #include "lane_keeping/gap/evaluation/noise_reference.h"
 
 namespace lane_keeping {
@@ -22,6 +23,7 @@ struct NominalReference {
   GapLog log;
   SensorNoise noise;  ///< the log's noise (estimatedNoise), its nominal motion taken out by this reference
   std::string error;  ///< set when the nominal closed loop diverges before the log's end
+  std::vector<std::string> ringing;  ///< notes of the log's steering-loop ringing the reference lacks (loop_ringing.h)
 };
 using NominalReferences = std::map<const LogSignals*, NominalReference>;
 
@@ -50,6 +52,15 @@ NominalReferences nominalReferences(const std::vector<Dataset>& train, const std
       simulated.t = r.log.t;
       for (const char* column : {"x", "y", "psi", "yaw_rate", "ay"}) *simulated.column(column) = *r.log.column(column);
       r.noise = estimatedNoise(log, input_driven ? &simulated : &r.log);
+      // (The input-driven reference's steering and torque are the log's own: nothing to compare.)
+      if (!input_driven) {
+        for (auto [channel, column] : {std::pair<LogSignals::Channel, const char*>{LogSignals::kTorque, "torque"},
+                                       {LogSignals::kDelta, "delta"}}) {
+          if (const auto ringing = loopRinging(log, r.log, channel, column)) {
+            r.ringing.push_back(ringingNote(log.log().source, *ringing));
+          }
+        }
+      }
     } catch (const LaneKeepingError& e) {
       r.error = e.what();
     }
@@ -149,6 +160,9 @@ NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset
     null.train.push_back(r.train);
     null.held_structure.push_back(r.structure);
   }
+  std::set<std::string> ringing;  // in the order of their text, whatever the order of the logs in memory
+  for (const auto& [log, reference] : nominal) ringing.insert(reference.ringing.begin(), reference.ringing.end());
+  null.notes.insert(null.notes.end(), ringing.begin(), ringing.end());
   return null;
 }
 

@@ -18,10 +18,10 @@ double medianOf(std::vector<double>& v) {
   return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m)));
 }
 
-}  // namespace
-
-std::optional<double> upperBandNoise(const std::vector<double>& values,
-                                     const std::vector<std::pair<std::size_t, std::size_t>>& stretches) {
+/// Per bin of the upper half band, its cells (one per segment), or nothing where there are fewer than
+/// kBandMinimumSegments segments.
+std::vector<std::vector<double>> upperBandCells(const std::vector<double>& values,
+                                                const std::vector<std::pair<std::size_t, std::size_t>>& stretches) {
   constexpr std::size_t n = kBandSegment;
   std::vector<double> window(n), gain(n / 2 + 1, 0.0);
   double window_power = 0.0;
@@ -54,10 +54,32 @@ std::optional<double> upperBandNoise(const std::vector<double>& values,
       }
     }
   }
-  if (cells[0].size() < kBandMinimumSegments) return std::nullopt;
-  std::vector<double> bin_medians;
-  for (std::vector<double>& bin : cells) bin_medians.push_back(medianOf(bin));
-  const double level = medianOf(bin_medians);
+  if (cells[0].size() < kBandMinimumSegments) return {};
+  return cells;
+}
+
+}  // namespace
+
+UpperBand upperBand(const std::vector<double>& values, const std::vector<std::pair<std::size_t, std::size_t>>& stretches) {
+  UpperBand out;
+  for (std::vector<double>& bin : upperBandCells(values, stretches)) {
+    double sum = 0.0;
+    for (double c : bin) sum += c;
+    out.mean.push_back(sum / static_cast<double>(bin.size()));
+    out.median.push_back(medianOf(bin));
+  }
+  return out;
+}
+
+double upperBandFrequency(std::size_t bin, double rate) {
+  return (static_cast<double>(kBandSegment / 4 + bin) / static_cast<double>(kBandSegment)) * rate;
+}
+
+std::optional<double> upperBandNoise(const std::vector<double>& values,
+                                     const std::vector<std::pair<std::size_t, std::size_t>>& stretches) {
+  UpperBand band = upperBand(values, stretches);
+  if (band.median.empty()) return std::nullopt;
+  const double level = medianOf(band.median);
   if (!std::isfinite(level)) return std::nullopt;
   return std::sqrt(level / std::log(2.0));  // an exponential variable's median is ln 2 of its mean
 }
