@@ -9,6 +9,7 @@
 #include <yaml-cpp/parser.h>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/yaml_position.h"
 
 namespace lane_keeping {
 namespace {
@@ -106,8 +107,7 @@ class SizeScan : public YAML::EventHandler {
   }
 
   [[noreturn]] void fail(const std::string& key, const YAML::Mark& mark, const std::string& message) const {
-    const std::string where = mark.line >= 0 ? origin_ + ":" + std::to_string(mark.line + 1) : origin_;
-    throw ConfigError(std::vector<ConfigProblem>{{key, where, message}});
+    throw ConfigError(std::vector<ConfigProblem>{{key, yamlPosition(origin_, mark), message}});
   }
 
   std::string origin_;

@@ -9,16 +9,9 @@
 #include "lane_keeping/common/file_identity.h"
 #include "lane_keeping/config/config_text_limits.h"
 #include "lane_keeping/config/unique_keys.h"
+#include "lane_keeping/config/yaml_position.h"
 
 namespace lane_keeping {
-namespace {
-
-std::string lineOf(const std::string& origin, const YAML::Mark& mark) {
-  if (mark.line < 0) return origin;
-  return origin + ":" + std::to_string(mark.line + 1);
-}
-
-}  // namespace
 
 void FlatParams::overlayFile(const std::string& path) {
   // A directory read as "basic_filebuf::underflow", a device (/dev/zero) without end. A pipe is read (a
@@ -66,7 +59,7 @@ void FlatParams::overlayText(const std::string& yaml_text, const std::string& or
 void FlatParams::overlayNode(const YAML::Node& root, const std::string& origin) {
   if (!root.IsMap()) {
     throw ConfigError(std::vector<ConfigProblem>{
-        {"", lineOf(origin, root.Mark()), "the top level must be a mapping of sections (vehicle:, tire:, ...)"}});
+        {"", yamlPosition(origin, root.Mark()), "the top level must be a mapping of sections (vehicle:, tire:, ...)"}});
   }
   checkUniqueKeys(root, origin);  // yaml-cpp keeps both entries of a key given twice (unique_keys.h)
   flatten(root, "", origin);
@@ -76,7 +69,7 @@ void FlatParams::flatten(const YAML::Node& node, const std::string& prefix, cons
   for (const auto& item : node) {
     if (!item.first.IsScalar()) {  // "? [a, b]: 1" or "{[1]: 2}": found by fuzzing (yaml-cpp's BadConversion escaped)
       throw ConfigError(std::vector<ConfigProblem>{
-          {prefix, lineOf(origin, item.first.Mark()),
+          {prefix, yamlPosition(origin, item.first.Mark()),
            std::string("a key must be a name, found a ") + (item.first.IsSequence() ? "list" : item.first.IsMap() ? "mapping" : "null")}});
     }
     const std::string name = item.first.as<std::string>();
@@ -85,7 +78,7 @@ void FlatParams::flatten(const YAML::Node& node, const std::string& prefix, cons
     if (value.IsMap()) {
       flatten(value, key, origin);
     } else {
-      setLeaf(key, Entry{value, lineOf(origin, value.Mark())});
+      setLeaf(key, Entry{value, yamlPosition(origin, value.Mark())});
     }
   }
 }

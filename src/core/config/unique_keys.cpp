@@ -4,15 +4,9 @@
 #include <vector>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/config/yaml_position.h"
 
 namespace lane_keeping {
-namespace {
-
-std::string lineOf(const std::string& origin, const YAML::Mark& mark) {
-  return mark.line < 0 ? origin : origin + ":" + std::to_string(mark.line + 1);
-}
-
-}  // namespace
 
 void checkUniqueKeys(const YAML::Node& node, const std::string& origin, const std::string& prefix) {
   // Iterative, depth first: a deeply nested file must not exhaust the stack here (config_text_limits.h
@@ -30,7 +24,7 @@ void checkUniqueKeys(const YAML::Node& node, const std::string& origin, const st
         const auto [first, fresh] = seen.emplace(name, item.first.Mark());
         if (!fresh) {
           throw ConfigError(std::vector<ConfigProblem>{
-              {key, lineOf(origin, item.first.Mark()),
+              {key, yamlPosition(origin, item.first.Mark()),
                "is given twice in one mapping (first at line " + std::to_string(first->second.line + 1) +
                    "): YAML keeps only one of them, without a word; merge the two into one"}});
         }

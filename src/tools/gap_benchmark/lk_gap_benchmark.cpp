@@ -39,6 +39,7 @@
 
 #include "lane_keeping/common/command_line.h"
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/common/median.h"
 #include "lane_keeping/config/param_readers.h"
 #include "gap_benchmark/benchmark_cases.h"
 #include "gap_benchmark/independent_groups.h"
@@ -240,14 +241,6 @@ double truthShrink(const std::string& dir, const std::string& id) {
   std::ifstream in(dir + "/reports/" + id + "/ceiling.json");
   if (!in) return std::numeric_limits<double>::quiet_NaN();
   return json::parse(in)["truth_shrink"].get<double>();
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  // With an even count the median is the mean of the two middle values (the upper one alone read
-  // 79.1 % where the median is 78.9 %).
-  const std::size_t n = v.size();
-  return n == 0 ? 0.0 : (n % 2 == 1 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]));
 }
 
 /// Whether a verdict's form names the truth's: equal to it, or among the forms the logs cannot tell apart

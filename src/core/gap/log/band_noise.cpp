@@ -6,17 +6,10 @@
 
 #include <unsupported/Eigen/FFT>
 
+#include "lane_keeping/common/median.h"
+
 namespace lane_keeping {
 namespace {
-
-/// The median (of an even count, the mean of the middle two); reorders `v`.
-double medianOf(std::vector<double>& v) {
-  const std::size_t m = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
-  const double upper = v[m];
-  if (v.size() % 2 == 1) return upper;
-  return 0.5 * (upper + *std::max_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m)));
-}
 
 /// Per bin of the upper half band, its cells (one per segment), or nothing where there are fewer than
 /// kBandMinimumSegments segments.
@@ -66,7 +59,7 @@ UpperBand upperBand(const std::vector<double>& values, const std::vector<std::pa
     double sum = 0.0;
     for (double c : bin) sum += c;
     out.mean.push_back(sum / static_cast<double>(bin.size()));
-    out.median.push_back(medianOf(bin));
+    out.median.push_back(median(std::move(bin)));
   }
   return out;
 }
@@ -79,7 +72,7 @@ std::optional<double> upperBandNoise(const std::vector<double>& values,
                                      const std::vector<std::pair<std::size_t, std::size_t>>& stretches) {
   UpperBand band = upperBand(values, stretches);
   if (band.median.empty()) return std::nullopt;
-  const double level = medianOf(band.median);
+  const double level = median(band.median);
   if (!std::isfinite(level)) return std::nullopt;
   return std::sqrt(level / std::log(2.0));  // an exponential variable's median is ln 2 of its mean
 }

@@ -8,6 +8,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/unique_keys.h"
+#include "lane_keeping/config/yaml_position.h"
 
 namespace lane_keeping {
 namespace {
@@ -19,7 +20,7 @@ const std::vector<std::string>& schemaColumns() {
 }
 
 std::string at(const std::string& file, const YAML::Node& node) {
-  return node.Mark().is_null() ? file : file + ":" + std::to_string(node.Mark().line + 1);
+  return yamlPosition(file, node.Mark());
 }
 
 [[noreturn]] void fail(const std::string& key, const std::string& location, const std::string& message) {
