@@ -19,6 +19,7 @@
 
 #include "lane_keeping/gap/diagnosis_data.h"
 #include "lane_keeping/gap/evaluation/gap_metrics.h"
+#include "lane_keeping/gap/evaluation/loop_ringing.h"
 #include "lane_keeping/gap/evaluation/residual_structure.h"
 #include "lane_keeping/gap/report/gap_report.h"
 
@@ -31,6 +32,8 @@ struct NoiseNull {
   /// Why draws are missing (the nominal loop cannot cover a log); a log's steering-loop ringing that its
   /// nominal reference lacks (loop_ringing.h).
   std::vector<std::string> notes;
+  /// The ringings behind those notes, ordered by source and column (what modal_evidence.h scores).
+  std::vector<LoopRinging> ringings;
 
   int draws() const { return static_cast<int>(held.size()); }
   /// Per subsystem: the largest held-out excess over the draws (0 without draws).

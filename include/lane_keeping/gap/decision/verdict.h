@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/gap/decision/modal_evidence.h"
 #include "lane_keeping/gap/decision/noise_null.h"
 #include "lane_keeping/gap/diagnosis_options.h"
 #include "lane_keeping/gap/fit/candidate_fit.h"
@@ -50,7 +51,13 @@ struct VerdictContext {
   /// Candidates (labels) that do not change the where-subsystem but whose own closed loop's noise-only
   /// draws leave as much excess there: its excess is their knock-on (knock_on.h).
   std::set<std::string> where_by_knock_on;
+  /// Candidates whose loop has a mode where a log rings that the nominal's does not (modal_evidence.h):
+  /// where no candidate earns its parameters by the replays and one alone has this evidence, it is named.
+  std::vector<ModalSupport> modal;
 };
+
+/// The candidate a verdict may name on the loop's modes alone: the one with modal evidence, if only one has it.
+const ModalSupport* modalWinner(const std::vector<ModalSupport>& modal);
 
 /// The verdict: `unexplained` when the held-out test does not detect a gap (saying so, and saying when
 /// the training data carry one the held-out data do not confirm), when no candidate earns its

@@ -13,7 +13,8 @@
 /// when it stands at least kRingingProminence times the log's noise level (the median of the bins' medians,
 /// over ln 2) and kRingingNarrowness times the band's median bin (narrow), and the nominal's same bin holds
 /// at most kRingingNominalShare of it (a start transient the nominal loop makes too is no evidence). Said in a note, with the frequencies the peak may alias
-/// (f, rate - f, rate + f); no verdict reads it yet.
+/// (f, rate - f, rate + f). A delay or gain candidate is scored on it against the linearised loop's roots
+/// (modal_evidence.h).
 #include <optional>
 #include <string>
 #include <vector>
@@ -34,11 +35,13 @@ constexpr double kRingingNarrowness = 30.0;
 constexpr double kRingingNominalShare = 0.1;
 
 struct LoopRinging {
+  std::string source;         ///< the log's source (file name)
   std::string column;         ///< "torque" or "delta"
   double frequency = 0.0;     ///< [Hz] the peak bin's centre, as sampled
   double rate = 0.0;          ///< [Hz] the log's sample rate
   double prominence = 0.0;    ///< the peak bin's mean level over the log's noise level
   double nominal_share = 0.0; ///< the nominal's level in that bin over the log's
+  double bin_width = 0.0;     ///< [Hz] of the band's bins (rate over the segment length)
 };
 
 /// The ringing of `column` (the LogSignals channel `channel`) in `log` that `nominal` (the noise-free nominal

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <tuple>
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/parallel_for.h"
@@ -23,7 +24,7 @@ struct NominalReference {
   GapLog log;
   SensorNoise noise;  ///< the log's noise (estimatedNoise), its nominal motion taken out by this reference
   std::string error;  ///< set when the nominal closed loop diverges before the log's end
-  std::vector<std::string> ringing;  ///< notes of the log's steering-loop ringing the reference lacks (loop_ringing.h)
+  std::vector<LoopRinging> ringing;  ///< the log's steering-loop ringing the reference lacks (loop_ringing.h)
 };
 using NominalReferences = std::map<const LogSignals*, NominalReference>;
 
@@ -57,7 +58,7 @@ NominalReferences nominalReferences(const std::vector<Dataset>& train, const std
         for (auto [channel, column] : {std::pair<LogSignals::Channel, const char*>{LogSignals::kTorque, "torque"},
                                        {LogSignals::kDelta, "delta"}}) {
           if (const auto ringing = loopRinging(log, r.log, channel, column)) {
-            r.ringing.push_back(ringingNote(log.log().source, *ringing));
+            r.ringing.push_back(*ringing);
           }
         }
       }
@@ -160,9 +161,14 @@ NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset
     null.train.push_back(r.train);
     null.held_structure.push_back(r.structure);
   }
-  std::set<std::string> ringing;  // in the order of their text, whatever the order of the logs in memory
-  for (const auto& [log, reference] : nominal) ringing.insert(reference.ringing.begin(), reference.ringing.end());
-  null.notes.insert(null.notes.end(), ringing.begin(), ringing.end());
+  // In the order of their sources and columns, whatever the order of the logs in memory.
+  for (const auto& [log, reference] : nominal) {
+    null.ringings.insert(null.ringings.end(), reference.ringing.begin(), reference.ringing.end());
+  }
+  std::sort(null.ringings.begin(), null.ringings.end(), [](const LoopRinging& a, const LoopRinging& b) {
+    return std::tie(a.source, a.column) < std::tie(b.source, b.column);
+  });
+  for (const LoopRinging& r : null.ringings) null.notes.push_back(ringingNote(r.source, r));
   return null;
 }
 

@@ -102,6 +102,10 @@ std::string pValue(const DetectionTest& test, int draws) {
 
 }  // namespace
 
+const ModalSupport* modalWinner(const std::vector<ModalSupport>& modal) {
+  return modal.size() == 1 ? &modal.front() : nullptr;
+}
+
 GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const VerdictContext& context,
                          const DiagnosisOptions& options) {
   const std::string where_subsystem = context.where ? context.where->subsystem : "";
@@ -125,7 +129,44 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
     v.shrink = 0.0;
     v.confidence = confidence;
   };
-  if (!detection.heldout.detected) {
+  // Named on the loop's modes (modal_evidence.h): where the replays name nothing, because their test does not
+  // see the gap or no candidate earns its parameters on them, and one candidate alone gives the loop the
+  // mode a log rings at. The ringing is its own test: a narrow peak 30 times the band's noise level that the
+  // nominal loop lacks. The replays do not measure how far it goes: the held-out gap stays as it was.
+  const ModalSupport* modal = best == nullptr || !detection.heldout.detected ? modalWinner(context.modal) : nullptr;
+  auto namedOnModes = [&](const ModalSupport& m) {
+    v.effect = m.effect;
+    v.form = m.form;
+    v.basis = "modal";
+    v.gap_after = gap_before;
+    v.shrink = 0.0;
+    v.confidence = 0.5;
+    reason << "a gap of " << briefNumber(gap_before) << " (mostly in the " << where_subsystem << " subsystem; "
+           << pValue(detection.heldout, detection.draws) << ")";
+    if (!detection.heldout.detected) {
+      reason << " that the replays' test does not detect on held-out data (training "
+             << pValue(detection.training, detection.draws) << ")";
+    } else {
+      reason << " that no candidate explains by the replays";
+      if (top != nullptr) {
+        reason << " (the best, " << top->label() << ", removes " << briefNumber(100.0 * std::max(0.0, top->shrink))
+               << " % of it on held-out data)";
+      }
+    }
+    for (const auto& r : ranking) {
+      if (r.label() != m.label()) continue;
+      reason << "; " << m.label() << "'s held-out replay: " << briefNumber(gap_before) << " -> "
+             << briefNumber(r.heldout_gap_after) << ", training " << briefNumber(r.train_gap_before) << " -> "
+             << briefNumber(r.train_gap_after);
+      if (!r.closed_loop_bounded) reason << " (its least-squares fit's closed loop leaves the logged bounds)";
+    }
+    reason << ". Named on the loop's modes: " << modalReason(m) << ". The replays, stepping between samples "
+           << briefNumber(1.0 / m.ringing.rate) << " s apart, do not weigh a mode at " << briefNumber(m.mode.frequency)
+           << " Hz: the held-out gap is left as it was, confidence 0.5";
+  };
+  if (modal != nullptr) {
+    namedOnModes(*modal);
+  } else if (!detection.heldout.detected) {
     // Not detected on held-out data. Never "nothing to explain" beside a gap in the training data.
     const double p = std::isfinite(detection.heldout.p_value) ? detection.heldout.p_value : 1.0;  // NaN: not tested
     unexplained(0.5 + 0.5 * std::clamp(p, 0.0, 1.0));
@@ -230,6 +271,11 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
                << briefNumber(options.min_evidence_per_parameter) << " per parameter it fits";
       }
     }
+  }
+  if (v.effect == "unexplained" && context.modal.size() > 1) {
+    reason << "; the logged ringing is a lightly damped mode of the loop under each of";
+    for (const auto& m : context.modal) reason << " " << m.label() << " (" << m.parameter << " " << briefNumber(m.modal) << ")";
+    reason << ": the loop's modes cannot tell them apart";
   }
   v.reason = reason.str();
   return v;

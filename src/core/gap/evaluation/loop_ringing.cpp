@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 
+#include "lane_keeping/common/median.h"
 #include "lane_keeping/gap/log/band_noise.h"
 #include "lane_keeping/gap/log/linear_resample.h"
 #include "lane_keeping/gap/log/time_holes.h"
@@ -24,19 +25,17 @@ std::optional<LoopRinging> loopRinging(const LogSignals& log, const GapLog& nomi
   if (logged.mean.empty() || modelled.mean.size() != logged.mean.size()) return std::nullopt;
   // The noise level: the median over the bins of each bin's median over the segments, over ln 2 (band_noise.h);
   // a white bin's mean is that level.
-  std::vector<double> medians = logged.median;
-  std::sort(medians.begin(), medians.end());
-  const double noise = 0.5 * (medians[(medians.size() - 1) / 2] + medians[medians.size() / 2]) / std::log(2.0);
+  const double noise = median(logged.median) / std::log(2.0);
   const auto peak = std::max_element(logged.mean.begin(), logged.mean.end());
   if (!(noise > 0.0) || !(*peak >= kRingingProminence * noise)) return std::nullopt;
-  std::vector<double> means = logged.mean;  // narrow: the band's middle bin far below the peak
-  std::sort(means.begin(), means.end());
-  const double middle = 0.5 * (means[(means.size() - 1) / 2] + means[means.size() / 2]);
-  if (!(*peak >= kRingingNarrowness * middle)) return std::nullopt;
+  // Narrow: the band's middle bin far below the peak.
+  if (!(*peak >= kRingingNarrowness * median(logged.mean))) return std::nullopt;
   const std::size_t bin = static_cast<std::size_t>(peak - logged.mean.begin());
   LoopRinging r;
+  r.source = log.log().source;
   r.column = column;
   r.rate = 1.0 / step;
+  r.bin_width = upperBandFrequency(1, r.rate) - upperBandFrequency(0, r.rate);
   r.frequency = upperBandFrequency(bin, r.rate);
   r.prominence = *peak / noise;
   r.nominal_share = modelled.mean[bin] / *peak;

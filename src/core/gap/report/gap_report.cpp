@@ -16,7 +16,8 @@
 //     "ranking": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {"key": "value"},
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
 //                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked"}],
-//     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason", "confusable_with": [..],
+//     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason",
+//                  "basis" ("replays" or "modal": named on the loop's modes, modal_evidence.h), "confusable_with": [..],
 //                  "effects": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {}, "share", "gap_after",
 //                               "evidence", "sensor", "confusable_with": [..]}], "combined_gap_after", "combined_shrink",
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
@@ -144,6 +145,7 @@ OrderedJson toJson(const GapVerdict& v) {
   out["gap_after"] = number(v.gap_after);
   out["shrink"] = number(v.shrink);
   out["reason"] = v.reason;
+  out["basis"] = v.basis;
   out["confusable_with"] = v.confusable_with;
   out["effects"] = OrderedJson::array();
   for (const VerdictEffect& e : v.effects) {
@@ -499,6 +501,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
   r.get(v, vp, "gap_after", &rep.verdict.gap_after, true);
   r.get(v, vp, "shrink", &rep.verdict.shrink, true);
   r.get(v, vp, "reason", &rep.verdict.reason);
+  r.get(v, vp, "basis", &rep.verdict.basis);  // absent in older reports: "replays"
   r.get(v, vp, "confusable_with", &rep.verdict.confusable_with);
   r.forEach(v, vp, "effects", false, [&](const Json& e, const std::string& p) {  // absent in older reports
     VerdictEffect s;

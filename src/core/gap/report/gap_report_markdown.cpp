@@ -108,6 +108,10 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
       << (v.form.empty() ? std::string() : " (" + v.form + ")") << " (confidence " << num(v.confidence, "%.2f") << ")\n\n";
   out << "- held-out gap: " << num(v.gap_before) << " → " << num(v.gap_after) << " (shrink " << percent(v.shrink)
       << ")\n";
+  if (v.basis == "modal") {
+    out << "- named on: the steering loop's modes (its roots against the logged ringing), not on the replays: the "
+           "held-out gap is left as it was\n";
+  }
   if (!v.reason.empty()) out << "- reason: " << v.reason << "\n";
   out << "- confusable with: " << (v.confusable_with.empty() ? "none reported" : join(v.confusable_with, ", "))
       << "\n";

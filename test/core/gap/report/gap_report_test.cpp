@@ -85,6 +85,7 @@ GapReport sampleReport() {
   r.verdict.shrink = a.shrink;
   r.verdict.reason = "tire_lag shrinks the held-out gap by 85 %, 4x more evidence than the runner-up";
   r.verdict.confusable_with = {"sensing_delay"};
+  r.verdict.basis = "modal";  // not the default, so that the round trip shows it is read back
   r.how_far.before = 0.4;
   r.how_far.after = 0.06;
   r.how_far.subsystems_before = {{"chassis", 0.35}, {"steering", 0.02}};
@@ -156,6 +157,7 @@ void expectSame(const GapReport& a, const GapReport& b) {
   expectSameDouble(a.verdict.gap_after, b.verdict.gap_after, "gap_after");
   expectSameDouble(a.verdict.shrink, b.verdict.shrink, "verdict shrink");
   EXPECT_EQ(a.verdict.reason, b.verdict.reason);
+  EXPECT_EQ(a.verdict.basis, b.verdict.basis);
   EXPECT_EQ(a.verdict.confusable_with, b.verdict.confusable_with);
   expectSameDouble(a.how_far.before, b.how_far.before, "how_far.before");
   expectSameDouble(a.how_far.after, b.how_far.after, "how_far.after");
