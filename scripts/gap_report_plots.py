@@ -345,6 +345,12 @@ def plot_overlay(directory, report, dpi):
         title += "\nclosed-loop gap %.3g → %.3g" % (before, after)
         if before > 0 and math.isfinite(after):
             title += " (shrink %s)" % percent(1.0 - after / before)
+        # Net of the logs' noise (how_far.h): what a perfect model would leave is taken out.
+        net_before, net_after = number(how_far.get("net_before")), number(how_far.get("net_after"))
+        if math.isfinite(net_before) and math.isfinite(net_after):
+            title += "; net of noise %.3g → %.3g" % (net_before, net_after)
+            if net_before > 0:
+                title += " (%s)" % percent(1.0 - net_after / net_before)
     fig.suptitle(title)
     out = os.path.join(directory, "overlay.png")
     fig.savefig(out, dpi=dpi)

@@ -290,6 +290,11 @@ struct ScoredCase {
   double howFarShrink() const {
     return r.how_far.before > 0.0 ? 1.0 - r.how_far.after / r.how_far.before : std::numeric_limits<double>::quiet_NaN();
   }
+  /// The same net of the logs' noise (how_far.net_before / net_after; NaN in reports without them).
+  double netHowFarShrink() const {
+    return r.how_far.net_before > 0.0 ? 1.0 - r.how_far.net_after / r.how_far.net_before
+                                      : std::numeric_limits<double>::quiet_NaN();
+  }
   std::string verdictLabel() const { return label(r.verdict.effect, r.verdict.form); }
   std::string truthLabel() const {
     std::string out;
@@ -335,7 +340,7 @@ void printConfusion(const std::map<std::string, std::map<std::string, int>>& con
 void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& scored) {
   std::map<std::string, std::map<std::string, int>> confusion;
   int in_list = 0, correct = 0, none = 0, false_alarms = 0, outside = 0, outside_unexplained = 0;
-  std::vector<double> shrinks, ceilings;
+  std::vector<double> shrinks, ceilings, how_far, net_how_far;
   std::vector<std::string> out_of_list, per_log;
   std::vector<std::string> misses;
   for (const ScoredCase& s : scored) {
@@ -354,6 +359,8 @@ void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& sco
       if (s.right()) {
         ++correct;
         shrinks.push_back(r.verdict.shrink);
+        if (std::isfinite(s.howFarShrink())) how_far.push_back(s.howFarShrink());
+        if (std::isfinite(s.netHowFarShrink())) net_how_far.push_back(s.netHowFarShrink());
         if (std::isfinite(ceiling)) ceilings.push_back(ceiling);
       } else {
         misses.push_back(id + " -> " + verdict);
@@ -382,6 +389,10 @@ void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& sco
     std::printf("  the truth model's own, same logs:    %.1f %%   (the ceiling: replay limits and noise)\n",
                 100.0 * median(ceilings));
   }
+  if (!how_far.empty()) {
+    std::printf("median closed-loop shrink when right: %.1f %%, net of the logs' noise %s\n", 100.0 * median(how_far),
+                net_how_far.empty() ? "-" : percent(median(net_how_far)).c_str());
+  }
   std::printf("no-effect logs judged unexplained:     %d / %d = %.1f %%   (target >= 90 %%)\n", none - false_alarms, none,
               none ? 100.0 * (none - false_alarms) / none : 0.0);
   std::printf("out-of-list logs judged unexplained:   %d / %d = %.1f %%   (target >= 80 %%)\n", outside_unexplained, outside,
@@ -400,7 +411,7 @@ void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& sco
 void printGroupTable(const std::string& group, const std::vector<ScoredCase>& scored) {
   int single = 0, single_right = 0, several = 0, one_of = 0, both = 0, none = 0, none_unexplained = 0, outside = 0,
       outside_unexplained = 0;
-  std::vector<double> shrinks, how_far;
+  std::vector<double> shrinks, how_far, net_how_far;
   std::vector<std::string> lines;
   for (const ScoredCase& s : scored) {
     const bool right = s.right();
@@ -428,15 +439,16 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
       if (right) {
         shrinks.push_back(s.shrink());
         if (std::isfinite(s.howFarShrink())) how_far.push_back(s.howFarShrink());
+        if (std::isfinite(s.netHowFarShrink())) net_how_far.push_back(s.netHowFarShrink());
       }
     }
     std::string named;
     for (const auto& e : s.r.verdict.effects) named += (named.empty() ? "" : ", ") + label(e.effect, e.form);
     const std::string named_text = s.r.verdict.effects.size() > 1 ? "  named: " + named : "";
     char line[768];
-    std::snprintf(line, sizeof(line), "  %-56s %-44s -> %-34s %-12s shrink %s, how far %s%s", s.c.id.c_str(),
+    std::snprintf(line, sizeof(line), "  %-56s %-44s -> %-34s %-12s shrink %s, how far %s (net %s)%s", s.c.id.c_str(),
                   s.truthLabel().c_str(), s.verdictLabel().c_str(), mark.c_str(), percent(s.shrink()).c_str(),
-                  percent(s.howFarShrink()).c_str(), named_text.c_str());
+                  percent(s.howFarShrink()).c_str(), percent(s.netHowFarShrink()).c_str(), named_text.c_str());
     lines.push_back(line);
   }
   std::printf("\n=== %s (%zu logs) ===\n\n| | measured |\n|---|---|\n", group.c_str(), scored.size());
@@ -450,6 +462,7 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
   if (single + several) {
     std::printf("| median held-out shrink when right | %s |\n", shrinks.empty() ? "-" : percent(median(shrinks)).c_str());
     std::printf("| median closed-loop (how far) shrink when right | %s |\n", how_far.empty() ? "-" : percent(median(how_far)).c_str());
+    std::printf("| the same net of the logs' noise | %s |\n", net_how_far.empty() ? "-" : percent(median(net_how_far)).c_str());
   }
   std::printf("\n");
   for (const auto& line : lines) std::printf("%s\n", line.c_str());
@@ -517,7 +530,8 @@ int score(const std::string& dir) {
   if (!family.empty() || groups.empty()) printFamilyTable(dir, family);
   if (groups.empty()) return 0;
   std::printf("\n\nThe groups, each in its own table: right = the verdict names the hidden effect, and "
-              "its form where the case sets one; how far = 1 - how_far.after / how_far.before.\n");
+              "its form where the case sets one; how far = 1 - how_far.after / how_far.before, net = the same of\n"
+              "how_far.net_after / how_far.net_before (net of the logs' noise).\n");
   std::map<std::string, std::map<std::string, int>> confusion;
   for (const auto& name : group_order) {
     const auto it = groups.find(name);

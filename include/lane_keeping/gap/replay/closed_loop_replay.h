@@ -3,6 +3,7 @@
 /// add an effect to their simulation — and the check that a configuration keeps that loop bounded
 /// over the log's span (the logged car did: a fitted effect under which the loop diverges
 /// contradicts the log, see diagnosis.cpp).
+#include <array>
 #include <limits>
 #include <string>
 #include <vector>
@@ -21,12 +22,24 @@ SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double 
 
 struct ClosedLoopReplay {
   double gap = std::numeric_limits<double>::quiet_NaN();  ///< RMS over y, yaw rate, delta of RMS(residual)/RMS(measured)
+  /// Each channel's RMS(residual)/RMS(measured), y, yaw rate, delta: `gap` is their RMS.
+  std::array<double, 3> channel_gaps{std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN(),
+                                     std::numeric_limits<double>::quiet_NaN()};
   std::vector<double> t, y, yaw_rate, delta;             ///< simulated, at the log's sample times
   std::string note;                                      ///< why the replay failed or diverged ("" if it did not)
 };
 
 /// Simulates the closed loop of `config` over the whole log and compares y, yaw rate and delta.
 ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log, double sigma1_0);
+
+/// What a perfect model's closed-loop replay would leave of each channel's gap (y, yaw rate, delta): the log's
+/// white noise at `sigma` (m, rad/s, rad; estimatedNoise) over the channel's RMS(measured), as `gap` divides.
+/// A residual is the model's miss plus that noise, uncorrelated: E[RMS^2] = miss^2 + sigma^2.
+std::array<double, 3> closedLoopNoiseFloor(const LogSignals& log, const std::array<double, 3>& sigma);
+
+/// The replay's gap net of `floor` (closedLoopNoiseFloor), channel by channel in quadrature:
+/// sqrt(mean over channels of max(0, gap_c^2 - floor_c^2)); NaN where the replay gave no gap.
+double netClosedLoopGap(const ClosedLoopReplay& replay, const std::array<double, 3>& floor);
 
 struct LoopDivergence {
   bool diverged = false;

@@ -158,6 +158,13 @@ struct GapSplit {
 struct ClosedLoopGap {
   double before = 0.0;  ///< closed-loop replay gap (held-out) with the nominal model
   double after = 0.0;   ///< with the winning effect added
+  /// What a perfect model's closed loop would leave: the logs' white noise on y, yaw rate and delta over each
+  /// channel's spread (closedLoopNoiseFloor), RMS over the channels and runs; NaN where not run.
+  double noise_floor = std::numeric_limits<double>::quiet_NaN();
+  /// before and after net of that floor, channel by channel in quadrature (netClosedLoopGap): what the
+  /// corrected model can still close. 1 - net_after / net_before is the closed-loop shrink net of noise.
+  double net_before = std::numeric_limits<double>::quiet_NaN();
+  double net_after = std::numeric_limits<double>::quiet_NaN();
   std::map<std::string, double> subsystems_before;  ///< per-subsystem held-out excess (gap_metrics.h)
   std::map<std::string, double> subsystems_after;
   /// Per-subsystem excess of the noise-only reference (noise_reference.h): the part of each excess a

@@ -11,6 +11,19 @@
 #include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {
+namespace {
+
+/// RMS about the mean, at least 1e-9 (what a channel's residual is measured against).
+double spreadOf(const std::vector<double>& v) {
+  double m = 0.0;
+  for (double x : v) m += x;
+  m /= static_cast<double>(std::max<std::size_t>(1, v.size()));
+  double s = 0.0;
+  for (double x : v) s += (x - m) * (x - m);
+  return std::max(1e-9, std::sqrt(s / static_cast<double>(std::max<std::size_t>(1, v.size()))));
+}
+
+}  // namespace
 
 SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double sigma1_0, double duration,
                                 double log_rate) {
@@ -73,20 +86,33 @@ ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log
     for (double x : v) s += x * x;
     return v.empty() ? 0.0 : std::sqrt(s / v.size());
   };
-  auto spread = [](const std::vector<double>& v) {
-    double m = 0.0;
-    for (double x : v) m += x;
-    m /= std::max<std::size_t>(1, v.size());
-    double s = 0.0;
-    for (double x : v) s += (x - m) * (x - m);
-    return std::max(1e-9, std::sqrt(s / std::max<std::size_t>(1, v.size())));
-  };
   if (res_y.empty()) return out;
-  const double gy = rms(res_y) / spread(log.samples(LogSignals::kY));
-  const double gr = rms(res_r) / spread(log.samples(LogSignals::kYawRate));
-  const double gd = rms(res_d) / spread(log.samples(LogSignals::kDelta));
+  const double gy = rms(res_y) / spreadOf(log.samples(LogSignals::kY));
+  const double gr = rms(res_r) / spreadOf(log.samples(LogSignals::kYawRate));
+  const double gd = rms(res_d) / spreadOf(log.samples(LogSignals::kDelta));
+  out.channel_gaps = {gy, gr, gd};
   out.gap = std::sqrt((gy * gy + gr * gr + gd * gd) / 3.0);
   return out;
+}
+
+std::array<double, 3> closedLoopNoiseFloor(const LogSignals& log, const std::array<double, 3>& sigma) {
+  const LogSignals::Channel channels[3] = {LogSignals::kY, LogSignals::kYawRate, LogSignals::kDelta};
+  std::array<double, 3> floor{};
+  for (std::size_t c = 0; c < 3; ++c) {
+    floor[c] = std::isfinite(sigma[c]) && sigma[c] > 0.0 ? sigma[c] / spreadOf(log.samples(channels[c])) : 0.0;
+  }
+  return floor;
+}
+
+double netClosedLoopGap(const ClosedLoopReplay& replay, const std::array<double, 3>& floor) {
+  if (!std::isfinite(replay.gap)) return std::numeric_limits<double>::quiet_NaN();
+  double sum = 0.0;
+  for (std::size_t c = 0; c < 3; ++c) {
+    const double g = replay.channel_gaps[c];
+    if (!std::isfinite(g)) return std::numeric_limits<double>::quiet_NaN();
+    sum += std::max(0.0, g * g - floor[c] * floor[c]);
+  }
+  return std::sqrt(sum / 3.0);
 }
 
 LoopDivergence closedLoopDivergence(const SimConfig& config, const LogSignals& log, double sigma1_0, double horizon,

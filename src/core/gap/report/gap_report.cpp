@@ -22,11 +22,13 @@
 //                               "evidence", "sensor", "confusable_with": [..]}], "combined_gap_after", "combined_shrink",
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
 //                  (only when a candidate explains part of the gap) },
-//     "how_far": { "before", "after", "shrink", "not_run" (why, only when the closed loop was not replayed:
+//     "how_far": { "before", "after", "shrink", "noise_floor", "net_before", "net_after", "net_shrink" (the closed-loop
+//                  gaps net of the logs' noise, how_far.h), "not_run" (why, only when the closed loop was not replayed:
 //                  before and after are null then), "subsystems_before": {}, "subsystems_after": {},
 //                  "subsystems_noise_reference": {} },
 //     "wall_seconds": [{"stage", "seconds"}] }
-// how_far.shrink = 1 - after / before is derived (written for readers, ignored when read back).
+// how_far.shrink = 1 - after / before and net_shrink = 1 - net_after / net_before are derived (written for
+// readers, ignored when read back).
 // Non-finite numbers (NaN, +-Inf) are written as JSON null (JSON has no NaN) and read back as NaN,
 // so an infinite value does not survive a round trip.
 #include "lane_keeping/gap/report/gap_report.h"
@@ -174,6 +176,11 @@ OrderedJson toJson(const ClosedLoopGap& h) {
   out["after"] = number(h.after);
   out["shrink"] = (std::isfinite(h.before) && h.before > 0.0) ? number(1.0 - h.after / h.before) : OrderedJson(nullptr);
   if (!h.not_run.empty()) out["not_run"] = h.not_run;
+  out["noise_floor"] = number(h.noise_floor);
+  out["net_before"] = number(h.net_before);
+  out["net_after"] = number(h.net_after);
+  out["net_shrink"] =
+      (std::isfinite(h.net_before) && h.net_before > 0.0) ? number(1.0 - h.net_after / h.net_before) : OrderedJson(nullptr);
   out["subsystems_before"] = numberMap(h.subsystems_before);
   out["subsystems_after"] = numberMap(h.subsystems_after);
   out["subsystems_noise_reference"] = numberMap(h.subsystems_noise_reference);
@@ -535,6 +542,9 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(*h, hp, "before", &rep.how_far.before);
     r.get(*h, hp, "after", &rep.how_far.after);
     r.get(*h, hp, "not_run", &rep.how_far.not_run);
+    r.get(*h, hp, "noise_floor", &rep.how_far.noise_floor);  // absent in older reports: NaN
+    r.get(*h, hp, "net_before", &rep.how_far.net_before);
+    r.get(*h, hp, "net_after", &rep.how_far.net_after);
     r.get(*h, hp, "subsystems_before", &rep.how_far.subsystems_before);
     r.get(*h, hp, "subsystems_after", &rep.how_far.subsystems_after);
     r.get(*h, hp, "subsystems_noise_reference", &rep.how_far.subsystems_noise_reference);

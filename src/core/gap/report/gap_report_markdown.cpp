@@ -273,7 +273,12 @@ void writeHowFar(std::ostream& out, const GapReport& r) {
     out << "Closed-loop replay gap: not run (" << h.not_run << ")\n\n";
   } else {
     out << "Closed-loop replay gap: " << num(h.before) << " → " << num(h.after) << " (shrink "
-        << percent(shrinkOf(h.before, h.after)) << ")\n\n";
+        << percent(shrinkOf(h.before, h.after)) << ")";
+    if (std::isfinite(h.noise_floor)) {
+      out << "; net of the logs' noise (a perfect model leaves " << num(h.noise_floor) << "): " << num(h.net_before)
+          << " → " << num(h.net_after) << " (shrink " << percent(shrinkOf(h.net_before, h.net_after)) << ")";
+    }
+    out << "\n\n";
   }
   std::vector<std::string> names;
   for (const auto& [name, value] : h.subsystems_before) names.push_back(name);

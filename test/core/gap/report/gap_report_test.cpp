@@ -88,6 +88,9 @@ GapReport sampleReport() {
   r.verdict.basis = "modal";  // not the default, so that the round trip shows it is read back
   r.how_far.before = 0.4;
   r.how_far.after = 0.06;
+  r.how_far.noise_floor = 0.03;
+  r.how_far.net_before = 0.39;
+  r.how_far.net_after = 0.052;
   r.how_far.subsystems_before = {{"chassis", 0.35}, {"steering", 0.02}};
   r.how_far.subsystems_after = {{"chassis", 0.05}, {"steering", 0.02}};
   r.wall_seconds = {{"where", 0.8}, {"fit tire_lag", 5.75}, {"which", 12.5}};
@@ -161,6 +164,9 @@ void expectSame(const GapReport& a, const GapReport& b) {
   EXPECT_EQ(a.verdict.confusable_with, b.verdict.confusable_with);
   expectSameDouble(a.how_far.before, b.how_far.before, "how_far.before");
   expectSameDouble(a.how_far.after, b.how_far.after, "how_far.after");
+  expectSameDouble(a.how_far.noise_floor, b.how_far.noise_floor, "how_far.noise_floor");
+  expectSameDouble(a.how_far.net_before, b.how_far.net_before, "how_far.net_before");
+  expectSameDouble(a.how_far.net_after, b.how_far.net_after, "how_far.net_after");
   EXPECT_EQ(a.how_far.subsystems_before, b.how_far.subsystems_before);
   EXPECT_EQ(a.how_far.subsystems_after, b.how_far.subsystems_after);
   EXPECT_EQ(a.wall_seconds, b.wall_seconds);
@@ -232,6 +238,7 @@ TEST(GapReportJson, ContainsTheDesignSection5Keys) {
   EXPECT_DOUBLE_EQ(j.at("ranking").at(0).at("param_sigma").at("relaxation_length").get<double>(), 0.03);
   EXPECT_EQ(j.at("ranking").at(0).at("config").at("tire.front.relaxation_length"), "0.62");
   EXPECT_DOUBLE_EQ(j.at("how_far").at("shrink").get<double>(), 1.0 - 0.06 / 0.4);
+  EXPECT_DOUBLE_EQ(j.at("how_far").at("net_shrink").get<double>(), 1.0 - 0.052 / 0.39);
   EXPECT_EQ(j.at("verdict").at("confusable_with").at(0), "sensing_delay");
 }
 
