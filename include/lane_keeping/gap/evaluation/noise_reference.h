@@ -14,6 +14,8 @@
 /// trace crossing the noise threshold or not), against 0.006-0.05 for the hidden effects.
 #include <map>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/log/gap_log.h"
@@ -48,6 +50,11 @@ void addSensorNoise(GapLog& log, const SensorNoise& noise, unsigned seed);
 /// nominal motion out of a characterised channel's level and colour. Give it only the columns the model
 /// simulates (not ones copied or smoothed from the log itself).
 SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal = nullptr);
+
+/// The white level of one channel as estimatedNoise reads it (without the character), within `stretches`
+/// (the log's hole-free stretches, time_holes.h).
+double whiteNoiseLevel(const LogSignals& log, LogSignals::Channel channel,
+                       const std::vector<std::pair<std::size_t, std::size_t>>& stretches);
 
 /// The nominal closed loop over the span of `log` (times shifted to the log's start), sampled at its
 /// median rate, with `log`'s optional columns only, without noise: the noise is added to the record,

@@ -7,6 +7,7 @@
 
 #include "lane_keeping/common/parallel_for.h"
 #include "lane_keeping/gap/evaluation/noise_reference.h"
+#include "lane_keeping/gap/log/time_holes.h"
 #include "lane_keeping/gap/replay/closed_loop_replay.h"
 #include "lane_keeping/gap/replay/subsystem_replay.h"
 
@@ -97,8 +98,11 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
         after += a.gap * a.gap;
         // A perfect model's replay still differs from the log by the log's own noise (issue 47, kind 7):
         // "0.100 -> 0.081" may be all the noise leaves. Its white levels from the upper half band.
-        const SensorNoise noise = estimatedNoise(log);
-        const auto floor = closedLoopNoiseFloor(log, {noise.position, noise.yaw_rate, noise.steering});
+        // (The three white levels only: estimatedNoise's channel characters took 0.3 s of a 60 s 1 kHz log.)
+        const auto stretches = holeFreeStretches(log.times());
+        const auto floor = closedLoopNoiseFloor(log, {whiteNoiseLevel(log, LogSignals::kY, stretches),
+                                                      whiteNoiseLevel(log, LogSignals::kYawRate, stretches),
+                                                      whiteNoiseLevel(log, LogSignals::kDelta, stretches)});
         floor2 += (floor[0] * floor[0] + floor[1] * floor[1] + floor[2] * floor[2]) / 3.0;
         const double nb = netClosedLoopGap(b, floor), na = netClosedLoopGap(a, floor);
         net_before += nb * nb;

@@ -36,17 +36,20 @@ void addSensorNoise(GapLog& g, const SensorNoise& n, unsigned seed) {
   add("v", g.v, n.speed);
 }
 
-SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal) {
-  using C = LogSignals;
-  SensorNoise n;
+double whiteNoiseLevel(const LogSignals& log, LogSignals::Channel c,
+                       const std::vector<std::pair<std::size_t, std::size_t>>& stretches) {
   // White levels from the upper half of each channel's band (band_noise.h): the fourth differences of
   // LogSignals::noise read a steering loop's fast ringing and a start transient as noise (132x the torque
   // noise on a log 1.7 ms from the margin), and draws that noisy hide what the ringing shows. Where a
   // channel is too short for the band's cells, the fourth differences' estimate.
+  return log.has(c) ? upperBandNoise(log.samples(c), stretches).value_or(log.noise(c)) : log.noise(c);
+}
+
+SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal) {
+  using C = LogSignals;
+  SensorNoise n;
   const auto stretches = holeFreeStretches(log.times());
-  auto white = [&](C::Channel c) {
-    return log.has(c) ? upperBandNoise(log.samples(c), stretches).value_or(log.noise(c)) : log.noise(c);
-  };
+  auto white = [&](C::Channel c) { return whiteNoiseLevel(log, c, stretches); };
   // x and y share one sensor; the larger estimate is the safer one (a curving path inflates neither much).
   n.position = std::max(white(C::kX), white(C::kY));
   n.heading = white(C::kPsi);
