@@ -321,17 +321,8 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     // fit may lie beyond the margin: 2.30 ms for a p = 1500 log's 2.2, whose closed loop diverged).
     combined = atModalValue(*winner, *modalWinner(context.modal), nominal);
     winner = &combined;
-    VerdictEffect e;
-    e.effect = winner->effect->name;
-    e.form = winner->effect->form;
-    for (std::size_t i = 0; i < winner->theta.size() && i < winner->effect->params.size(); ++i) {
-      e.params[winner->effect->params[i].name] = winner->theta[i];
-      if (i < winner->sigma.size()) e.param_sigma[winner->effect->params[i].name] = winner->sigma[i];
-    }
-    e.config = configDifference(nominal, winner->corrected);
+    VerdictEffect e = verdictEffect(*winner, nominal);
     e.gap_after = gap_before;
-    e.evidence = winner->evidence;
-    e.sensor = winner->effect->sensor;
     report.verdict.effects = {e};
     report.verdict.combined_gap_after = gap_before;
     report.verdict.combined_shrink = 0.0;
