@@ -97,10 +97,12 @@ void cutAtHoles(std::vector<Dataset>* data, double margin);
 ///    fall on both sides. Equal-time blocks put the first seconds of a run, often its strongest
 ///    excitation, wholly into training: an effect that shows only there (a torque limit hit by the
 ///    initial correction) was invisible on held-out data.
+///  * options.fold == 1: the second fold, the two sides of the above swapped (for runs held out by the caller,
+///    the caller swaps them: fold_pooling.h).
 /// `coverage` gives, per excitation kind, the share of it that lies in held-out data.
 struct DataSplit {
   std::vector<Dataset> train, held;
-  std::vector<std::string> held_blocks;
+  std::vector<std::string> held_blocks, train_blocks;  ///< what each side holds ("whole runs", "blocks")
   std::string method;                       ///< "held-out runs", "whole runs" or "excitation-balanced blocks"
   std::map<std::string, double> coverage;   ///< excitation kind -> held-out share
 };

@@ -51,6 +51,16 @@ struct DiagnosisOptions {
   /// A single run whose gap sets in mid-run (GapWhere::onset) and that no candidate explains over the
   /// whole log is diagnosed again on the part from the onset on (gap_onset.h).
   bool from_onset = true;
+  /// Where the held-out test alone does not detect a gap and both sides together do, the diagnosis is run
+  /// again with training and held-out data swapped, and an effect is named only if both folds name it
+  /// (fold_pooling.h; issue 47, kind 1).
+  bool two_folds = true;
+  /// Fit the leader's other forms (LuGre kingpin friction, a soft saturation) and let the one that fits
+  /// better stand for it (leader_forms.h; issue 47, kind 7).
+  bool leader_forms = true;
+  /// Which fold this diagnosis is: 0 the split as splitData makes it, 1 its two sides swapped (set by the
+  /// diagnosis for its second fold).
+  int fold = 0;
   std::vector<std::string> effects; ///< restrict the candidates (empty: all)
   std::function<void(const std::string&)> progress;  ///< progress messages (may be empty)
 };

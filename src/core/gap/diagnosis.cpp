@@ -9,6 +9,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/parallel_for.h"
+#include "lane_keeping/gap/decision/fold_pooling.h"
 #include "lane_keeping/gap/decision/forward_selection.h"
 #include "lane_keeping/gap/decision/knock_on.h"
 #include "lane_keeping/gap/decision/modal_evidence.h"
@@ -25,6 +26,7 @@
 #include "lane_keeping/gap/fit/candidate_fit.h"
 #include "lane_keeping/gap/fit/candidate_forms.h"
 #include "lane_keeping/gap/fit/closed_loop_checks.h"
+#include "lane_keeping/gap/fit/leader_forms.h"
 #include "lane_keeping/gap/gap_onset.h"
 
 namespace lane_keeping {
@@ -161,8 +163,13 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   report.where = whereAnalysis(nominal_all, everything, options.upstream_share, artifacts);
   const double gap_before = gapOf(nominal_held.scores, {});
   report.detection = detectGap(nominal_train.scores, nominal_held.scores, null, options);
+  // Where the held-out test alone misses the gap and both sides together see it, the diagnosis goes on in
+  // two folds on the pooled test (fold_pooling.h); `decisive` is the test it goes on.
+  const bool on_pooled = decidesOnPooledTest(report.detection, options);
+  GapDetection decisive = report.detection;
+  if (on_pooled) decisive.heldout = decisive.pooled;
   // An onset is where a gap sets in: with none detected, the excess is noise and so is its "onset".
-  if (!report.detection.heldout.detected && !report.detection.training.detected) {
+  if (!decisive.heldout.detected && !report.detection.training.detected) {
     report.where.onsets.clear();
     report.where.onset = std::numeric_limits<double>::quiet_NaN();
   }
@@ -194,7 +201,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
       if (netExcess(score) > 0.0) carrying.insert(name);
     }
   }
-  const bool any_gap = report.detection.heldout.detected || report.detection.training.detected;
+  const bool any_gap = decisive.heldout.detected || report.detection.training.detected;
   std::vector<const CandidateEffect*> candidates;
   for (const auto& c : candidateEffects()) {
     if (!options.effects.empty() && std::find(options.effects.begin(), options.effects.end(), c.name) == options.effects.end()) {
@@ -252,7 +259,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   }
   // Fits whose closed loop leaves the logged bounds, fitted again under them where that could change
   // the verdict (bounded_refit.h).
-  for (const auto& stage : refitWhereTheyCouldWin(fit_context, gap_before, report.detection.heldout.detected,
+  for (const auto& stage : refitWhereTheyCouldWin(fit_context, gap_before, decisive.heldout.detected,
                                                   report.where.subsystem, options, &fits)) {
     report.wall_seconds.push_back(stage);
   }
@@ -269,7 +276,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   report.ranking = rankFits(fits, nominal, gap_before, &report.notes);
   // What the best candidates' own closed loops leave where they do not act (knock_on.h).
   std::map<std::string, KnockOn> knock_on;
-  if (report.detection.heldout.detected && null.draws() > 0) {
+  if (decisive.heldout.detected && null.draws() > 0) {
     const Clock::time_point knock_on_start = Clock::now();
     knock_on = netKnockOn(&report.ranking, fits, nominal_held, held, gap_before, options, &report.notes);
     if (!knock_on.empty()) report.wall_seconds.emplace_back("knock-on draws", secondsSince(knock_on_start));
@@ -288,6 +295,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   context.where = &report.where;
   context.gap_before = gap_before;
   context.detection = report.detection;
+  context.pooled = on_pooled;
   context.partial_of = [&](const RankedEffect& ranked) {
     for (const auto& fit : fits) {
       if (fit.ok && fit.effect->name == ranked.effect && fit.effect->form == primaryForm(ranked.form)) {
@@ -306,6 +314,21 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     report.wall_seconds.emplace_back("modal evidence", secondsSince(modal_start));
   }
   report.verdict = decideVerdict(report.ranking, context, options);
+  // The second fold's verdict is all the first reads of it (fold_pooling.h).
+  if (options.fold == 1) return report;
+  if (on_pooled) {
+    say("the held-out data alone do not detect the gap, both sides together do: the second fold, sides swapped");
+    const Clock::time_point fold_start = Clock::now();
+    DiagnosisOptions second = options;
+    second.fold = 1;
+    if (options.progress) second.progress = [&](const std::string& m) { say("fold 2: " + m); };
+    const GapReport other = heldout.empty() ? diagnoseGap(nominal, training, {}, second, nullptr)
+                                            : diagnoseGap(nominal, heldout, training, second, nullptr);
+    report.folds = {foldOf(report, heldout.empty() ? split.train_blocks : report.logs),
+                    foldOf(other, heldout.empty() ? report.heldout : other.logs)};
+    poolFolds(&report.verdict, report.detection, report.folds);
+    report.wall_seconds.emplace_back("second fold", secondsSince(fold_start));
+  }
 
   const CandidateFit* winner = nullptr;
   for (const auto& fit : fits) {
@@ -314,7 +337,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     }
   }
   // ---- Several effects at once: the others fitted on top of the leader (forward_selection.h) ---------
-  CandidateFit combined;
+  CandidateFit combined, leader_form;
   if (winner != nullptr && report.verdict.basis == "modal" && modalWinner(context.modal) != nullptr) {
     // Named on the loop's modes: the replays that would weigh further effects on top of it cannot. What it
     // reports, and how far replays, is the effect at the value the modes point to (a stable loop; the replay
@@ -327,6 +350,29 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     report.verdict.combined_gap_after = gap_before;
     report.verdict.combined_shrink = 0.0;
   } else if (winner != nullptr) {
+    // The form that reproduces the effect (leader_forms.h): LuGre kingpin friction, a soft saturation.
+    const Clock::time_point form_start = Clock::now();
+    const std::size_t notes_before = report.notes.size();
+    leader_form = refitLeaderForm(*winner, fit_context, options, &report.notes);
+    if (report.notes.size() > notes_before) report.wall_seconds.emplace_back("leader's forms", secondsSince(form_start));
+    if (leader_form.ok) {
+      std::vector<std::string> ignored;
+      const std::vector<RankedEffect> ranked = rankFits({leader_form}, nominal, gap_before, &ignored);
+      for (auto it = report.ranking.begin(); it != report.ranking.end(); ++it) {
+        if (it->effect == winner->effect->name && it->form == winner->effect->form) {
+          report.ranking.insert(it, ranked.front());
+          break;
+        }
+      }
+      report.verdict.reason += "; fitted again in its " + leader_form.effect->form + " form, which fits the training data "
+                               "better (" + briefNumber(winner->train_after) + " -> " +
+                               briefNumber(leader_form.train_after) + "): held-out gap " + briefNumber(gap_before) +
+                               " -> " + briefNumber(leader_form.heldout_after);
+      report.verdict.form = leader_form.effect->form;
+      report.verdict.gap_after = leader_form.heldout_after;
+      report.verdict.shrink = gap_before > 0.0 ? 1.0 - leader_form.heldout_after / gap_before : 0.0;
+      winner = &leader_form;
+    }
     say("fitting further effects on top of " + winner->effect->label());
     const Clock::time_point more_start = Clock::now();
     ForwardSelection more = forwardSelection(*winner, candidates, fits, fit_context, null, gap_before, options);

@@ -308,6 +308,7 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
     split.train = wholeLogs(train, options.start_margin);
     split.held = wholeLogs(held, options.start_margin);
     for (const RunData& run : held) split.held_blocks.push_back(run.log->log().source + " (whole run)");
+    for (const RunData& run : train) split.train_blocks.push_back(run.log->log().source + " (whole run)");
   } else {
     split.method = "excitation-balanced blocks";
     for (const auto& run : train_runs) {
@@ -337,12 +338,14 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
         longest = std::max(longest, bounds[b + 1] - bounds[b]);
       }
       auto tenths = [](double s) { return formatNumber(std::round(10.0 * s) / 10.0); };
-      split.held_blocks.push_back(log->log().source + " (the odd ones of " + std::to_string(bounds.size() - 1) +
-                                  " blocks balanced in excitation, " + tenths(shortest) + "-" + tenths(longest) + " s" +
-                                  (transient ? "; " + formatNumber(kStartTransientLead) + "-" + tenths(kStartTransientWindow) +
-                                                   " s, a start transient, in slivers of " + formatNumber(kStartSliver) + " s"
-                                             : std::string()) +
-                                  ")");
+      const std::string blocks = " of " + std::to_string(bounds.size() - 1) + " blocks balanced in excitation, " +
+                                 tenths(shortest) + "-" + tenths(longest) + " s" +
+                                 (transient ? "; " + formatNumber(kStartTransientLead) + "-" + tenths(kStartTransientWindow) +
+                                                  " s, a start transient, in slivers of " + formatNumber(kStartSliver) + " s"
+                                            : std::string()) +
+                                 ")";
+      split.held_blocks.push_back(log->log().source + " (the odd ones" + blocks);
+      split.train_blocks.push_back(log->log().source + " (the even ones" + blocks);
     }
     cutAtHoles(&split.train, options.start_margin);
     cutAtHoles(&split.held, options.start_margin);
@@ -350,6 +353,12 @@ DataSplit splitData(const std::vector<RunData>& train_runs, const std::vector<Ru
       throw InputError("gap diagnosis: the log is too short to hold out a block of " +
                        formatNumber(options.min_block_length) + " s");
     }
+  }
+  if (options.fold == 1 && held_runs.empty()) {
+    // The second fold (fold_pooling.h): every side held out once. Given held-out runs, the caller swaps them.
+    std::swap(split.train, split.held);
+    split.method += ", second fold (training and held-out sides swapped)";
+    std::swap(split.train_blocks, split.held_blocks);
   }
   split.coverage = heldCoverage(split.train, split.held);
   return split;

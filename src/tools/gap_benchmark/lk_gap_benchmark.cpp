@@ -444,7 +444,11 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
     }
     std::string named;
     for (const auto& e : s.r.verdict.effects) named += (named.empty() ? "" : ", ") + label(e.effect, e.form);
-    const std::string named_text = s.r.verdict.effects.size() > 1 ? "  named: " + named : "";
+    std::string named_text = s.r.verdict.effects.size() > 1 ? "  named: " + named : "";
+    if (s.r.folds.size() == 2) {  // decided on the pooled test (fold_pooling.h): what each fold named
+      named_text += "  [two folds: " + label(s.r.folds[0].effect, s.r.folds[0].form) + " / " +
+                    label(s.r.folds[1].effect, s.r.folds[1].form) + "]";
+    }
     char line[768];
     std::snprintf(line, sizeof(line), "  %-56s %-44s -> %-34s %-12s shrink %s, how far %s (net %s)%s", s.c.id.c_str(),
                   s.truthLabel().c_str(), s.verdictLabel().c_str(), mark.c_str(), percent(s.shrink()).c_str(),

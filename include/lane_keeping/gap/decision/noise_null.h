@@ -60,7 +60,8 @@ int minimumNoiseDraws(double false_alarm_rate);
 double monteCarloPValue(double value, const std::vector<double>& draws);
 
 /// The calibrated tests on held-out and training data: detected when p <= options.false_alarm_rate and
-/// the net gap (gapOf) reaches options.detection_gap. Without draws, the net gap alone decides.
+/// the net gap (gapOf) reaches options.detection_gap. Without draws, the net gap alone decides. Also the
+/// pooled test of both sides (T_train + T_held against each draw's sum; its net gap the RMS of the two).
 GapDetection detectGap(const std::map<std::string, SubsystemScore>& train, const std::map<std::string, SubsystemScore>& held,
                        const NoiseNull& null, const DiagnosisOptions& options);
 

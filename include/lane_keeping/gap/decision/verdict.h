@@ -46,6 +46,8 @@ struct VerdictContext {
   const GapWhere* where = nullptr;       ///< the where-analysis (subsystem, nrmse and floor for the reason)
   double gap_before = 0.0;               ///< held-out gap of the nominal, net of the noise reference
   GapDetection detection;                ///< the calibrated tests on held-out and training data
+  /// Decided on the pooled test of both sides (fold_pooling.h): it stands in for the held-out test.
+  bool pooled = false;
   /// The partial-explanation analysis of a would-be winner (what it leaves; see partialExplanation).
   std::function<PartialExplanation(const RankedEffect&)> partial_of;
   /// Candidates (labels) that do not change the where-subsystem but whose own closed loop's noise-only

@@ -147,6 +147,24 @@ struct GapDetection {
   int draws = 0;                   ///< noise-only null draws
   double false_alarm_rate = 0.05;  ///< alpha
   DetectionTest heldout, training;
+  /// Both sides together (value = training + held-out, against each draw's two totals summed): the test
+  /// of the two folds, in which each side is held out once (fold_pooling.h). Decides in place of the
+  /// held-out test where that alone does not detect a gap.
+  DetectionTest pooled;
+};
+
+/// One fold of a diagnosis (fold_pooling.h): what was fitted on which data and what it named. The first
+/// fold is the split of `split.method`; the second swaps its training and held-out sides.
+struct GapFold {
+  std::vector<std::string> training;  ///< logs or blocks fitted on
+  std::vector<std::string> heldout;   ///< logs or blocks scored on
+  std::string effect;                 ///< its verdict ("unexplained" when it names nothing)
+  std::string form;
+  std::string basis = "replays";
+  double heldout_p = 1.0;             ///< its held-out test alone
+  double gap_before = 0.0;            ///< its held-out gap, nominal
+  double gap_after = 0.0;             ///< with its verdict's effect
+  std::map<std::string, double> params;
 };
 
 /// How training and held-out data were chosen (diagnosis_data.h).
@@ -211,6 +229,9 @@ struct GapReport {
   std::vector<UntestableEffect> not_fitted;
   GapSplit split;
   GapDetection detection;
+  /// Where the held-out test alone misses and the pooled one detects: both folds, the first as reported
+  /// (empty otherwise; fold_pooling.h).
+  std::vector<GapFold> folds;
   GapWhere where;
   std::vector<RankedEffect> ranking;  ///< best first
   GapVerdict verdict;

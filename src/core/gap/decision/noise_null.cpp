@@ -197,18 +197,23 @@ double quantile(std::vector<double> v, double q) {
   return i + 1 < v.size() ? v[i] + w * (v[i + 1] - v[i]) : v[i];
 }
 
-DetectionTest test(const std::map<std::string, SubsystemScore>& scores, const std::vector<double>& draws,
-                   const DiagnosisOptions& options) {
+/// T = `value` among `draws`; detected when significant and the net gap reaches detection_gap.
+DetectionTest test(double value, double net_gap, const std::vector<double>& draws, const DiagnosisOptions& options) {
   DetectionTest out;
-  out.value = totalExcessSquared(scores);
+  out.value = value;
   out.p_value = monteCarloPValue(out.value, draws);
   out.null_median = quantile(draws, 0.5);
   out.null_max = draws.empty() ? 0.0 : *std::max_element(draws.begin(), draws.end());
   out.tested = !draws.empty();
   if (!out.tested) out.p_value = std::numeric_limits<double>::quiet_NaN();
   const bool significant = draws.empty() || out.p_value <= options.false_alarm_rate;
-  out.detected = significant && gapOf(scores, {}) >= options.detection_gap;
+  out.detected = significant && net_gap >= options.detection_gap;
   return out;
+}
+
+DetectionTest test(const std::map<std::string, SubsystemScore>& scores, const std::vector<double>& draws,
+                   const DiagnosisOptions& options) {
+  return test(totalExcessSquared(scores), gapOf(scores, {}), draws, options);
 }
 
 }  // namespace
@@ -228,6 +233,14 @@ GapDetection detectGap(const std::map<std::string, SubsystemScore>& train, const
   d.false_alarm_rate = options.false_alarm_rate;
   d.heldout = test(held, null.heldTotals(), options);
   d.training = test(train, null.trainTotals(), options);
+  // Both sides together: each draw's training and held-out totals summed, as the log's (the draws replay
+  // both sides of one realisation, so the sums are exchangeable with the log's as each side's are).
+  const std::vector<double> held_totals = null.heldTotals(), train_totals = null.trainTotals();
+  std::vector<double> pooled(std::min(held_totals.size(), train_totals.size()));
+  for (std::size_t i = 0; i < pooled.size(); ++i) pooled[i] = train_totals[i] + held_totals[i];
+  const double g_train = gapOf(train, {}), g_held = gapOf(held, {});
+  d.pooled = test(d.training.value + d.heldout.value, std::sqrt(0.5 * (g_train * g_train + g_held * g_held)), pooled,
+                  options);
   return d;
 }
 

@@ -121,7 +121,10 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
   const RankedEffect* best = selection.winner;
   const RankedEffect* second = selection.runner_up;
   const bool pinned_winner = selection.winner_pinned;
-  const GapDetection& detection = context.detection;
+  // On the pooled test (fold_pooling.h) it stands in for the held-out test; the loop's modes are still
+  // read where the held-out test alone does not see the gap.
+  GapDetection detection = context.detection;
+  if (context.pooled) detection.heldout = detection.pooled;
   std::ostringstream reason;
   auto unexplained = [&](double confidence) {
     v.effect = "unexplained";
@@ -133,7 +136,8 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
   // see the gap or no candidate earns its parameters on them, and one candidate alone gives the loop the
   // mode a log rings at. The ringing is its own test: a narrow peak 30 times the band's noise level that the
   // nominal loop lacks. The replays do not measure how far it goes: the held-out gap stays as it was.
-  const ModalSupport* modal = best == nullptr || !detection.heldout.detected ? modalWinner(context.modal) : nullptr;
+  const ModalSupport* modal =
+      best == nullptr || !context.detection.heldout.detected ? modalWinner(context.modal) : nullptr;
   auto namedOnModes = [&](const ModalSupport& m) {
     v.effect = m.effect;
     v.form = m.form;

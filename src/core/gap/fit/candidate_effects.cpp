@@ -6,6 +6,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/gap/fit/leader_forms.h"
 
 namespace lane_keeping {
 namespace {
@@ -262,8 +263,10 @@ std::string primaryForm(const std::string& form) { return form.substr(0, form.fi
 bool effectChangesSubsystem(const std::string& effect, const std::string& subsystem, const std::string& form) {
   candidateEffect(effect);  // throws on an unknown name
   const std::string primary = primaryForm(form);
-  for (const auto& e : candidateEffects()) {
-    if (e.name == effect && (primary.empty() || e.form == primary) && e.changes(subsystem)) return true;
+  for (const auto* list : {&candidateEffects(), &diagnosis::leaderForms()}) {
+    for (const auto& e : *list) {
+      if (e.name == effect && (primary.empty() || e.form == primary) && e.changes(subsystem)) return true;
+    }
   }
   return false;
 }

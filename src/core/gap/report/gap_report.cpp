@@ -7,7 +7,10 @@
 //     "input_checks": [{"log", "channel", "kind", "detail", "t0", "t1" (a hole's; only for holes)}],
 //     "split": { "method", "coverage": {kind: held-out share} },
 //     "detection": { "draws", "false_alarm_rate", "heldout": {"tested", "value", "p_value", "null_median",
-//                    "null_max", "detected"}, "training": {..} }  (not tested: p_value null, no "detected"),
+//                    "null_max", "detected"}, "training": {..}, "pooled": {..} (both sides together) }
+//                  (not tested: p_value null, no "detected"),
+//     "folds": [{"training": [..], "heldout": [..], "effect", "form", "basis", "heldout_p", "gap_before", "gap_after",
+//                "params": {}}] (both folds, where the verdict was decided on the pooled test; else empty),
 //     "where":   { "subsystem", "subsystems": [{"name", "nrmse", "noise_floor", "outputs": [..]}],
 //                  "windows": [{"log", "t0", "t1", "share", "log_t0"}], "onset" (optional),
 //                  "onsets": [{"log", "t", "since_start"}] (per run; since_start = t - the log's first sample),
@@ -216,7 +219,20 @@ OrderedJson toJson(const GapReport& r) {
   out["detection"] = OrderedJson{{"draws", r.detection.draws},
                                  {"false_alarm_rate", number(r.detection.false_alarm_rate)},
                                  {"heldout", toJson(r.detection.heldout)},
-                                 {"training", toJson(r.detection.training)}};
+                                 {"training", toJson(r.detection.training)},
+                                 {"pooled", toJson(r.detection.pooled)}};
+  out["folds"] = OrderedJson::array();
+  for (const GapFold& f : r.folds) {
+    out["folds"].push_back(OrderedJson{{"training", f.training},
+                                       {"heldout", f.heldout},
+                                       {"effect", f.effect},
+                                       {"form", f.form},
+                                       {"basis", f.basis},
+                                       {"heldout_p", number(f.heldout_p)},
+                                       {"gap_before", number(f.gap_before)},
+                                       {"gap_after", number(f.gap_after)},
+                                       {"params", numberMap(f.params)}});
+  }
   out["where"] = toJson(r.where);
   out["ranking"] = OrderedJson::array();
   for (const RankedEffect& e : r.ranking) out["ranking"].push_back(toJson(e));
@@ -420,7 +436,8 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     rep.detection.draws = static_cast<int>(draws);
     r.get(*d, dp, "false_alarm_rate", &rep.detection.false_alarm_rate);
     for (auto [key, test] : {std::pair<const char*, DetectionTest*>{"heldout", &rep.detection.heldout},
-                             std::pair<const char*, DetectionTest*>{"training", &rep.detection.training}}) {
+                             std::pair<const char*, DetectionTest*>{"training", &rep.detection.training},
+                             std::pair<const char*, DetectionTest*>{"pooled", &rep.detection.pooled}}) {
       if (const Json* e = r.member(*d, dp, key, false)) {
         const std::string ep = dp + "." + key;
         r.get(*e, ep, "tested", &test->tested);  // absent in older reports: tested
@@ -432,6 +449,19 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
       }
     }
   }
+  r.forEach(j, root, "folds", false, [&](const Json& e, const std::string& p) {  // absent in older reports
+    GapFold f;
+    r.get(e, p, "training", &f.training);
+    r.get(e, p, "heldout", &f.heldout);
+    r.get(e, p, "effect", &f.effect, true);
+    r.get(e, p, "form", &f.form);
+    r.get(e, p, "basis", &f.basis);
+    r.get(e, p, "heldout_p", &f.heldout_p);
+    r.get(e, p, "gap_before", &f.gap_before);
+    r.get(e, p, "gap_after", &f.gap_after);
+    r.get(e, p, "params", &f.params);
+    rep.folds.push_back(f);
+  });
 
   // DESIGN §5 keys are required; the others are optional (defaults when absent).
   const std::string wp = root + ".where";

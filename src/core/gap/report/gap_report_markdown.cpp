@@ -122,11 +122,23 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
         << num(d.heldout.value, "%.3g") << ", p = " << num(d.heldout.p_value, "%.3f")
         << (d.heldout.detected ? " (a gap)" : " (within noise)") << "; training " << num(d.training.value, "%.3g")
         << ", p = " << num(d.training.p_value, "%.3f") << (d.training.detected ? " (a gap)" : " (within noise)")
-        << "; draws: median " << num(d.heldout.null_median, "%.3g") << ", largest " << num(d.heldout.null_max, "%.3g")
-        << "\n";
+        << "; both together " << num(d.pooled.value, "%.3g") << ", p = " << num(d.pooled.p_value, "%.3f")
+        << (d.pooled.detected ? " (a gap)" : " (within noise)") << "; draws: median "
+        << num(d.heldout.null_median, "%.3g") << ", largest " << num(d.heldout.null_max, "%.3g") << "\n";
   } else {
     out << "- is there a gap? not tested: no noise-only draw could run (see the notes); the diagnosis went on "
            "where the held-out gap reached the detection threshold\n";
+  }
+  if (!r.folds.empty()) {
+    out << "- each side held out in turn (the held-out test alone missed the gap, both sides together saw it):\n";
+    for (std::size_t k = 0; k < r.folds.size(); ++k) {
+      const GapFold& f = r.folds[k];
+      out << "  - fold " << (k + 1) << ", fitted on " << join(f.training, ", ") << ", scored on " << join(f.heldout, ", ")
+          << " (held-out p = " << num(f.heldout_p, "%.3f") << "): " << f.effect << (f.form.empty() ? "" : " (" + f.form + ")");
+      if (f.effect != "unexplained") out << ", held-out gap " << num(f.gap_before) << " → " << num(f.gap_after);
+      for (const auto& [name, value] : f.params) out << ", " << name << " " << num(value, "%.4g");
+      out << "\n";
+    }
   }
   if (v.effects.size() > 1) {
     out << "- effects named (each fitted on top of those before it, its share of the held-out gap):\n";

@@ -1,0 +1,38 @@
+#pragma once
+/// Every side held out once (issue 47, kind 1). One split into training and held-out data lets one side
+/// veto the other: an effect fitted nearly exactly on the training side (a cornering stiffness at
+/// 0.856/0.906 for 0.85/0.90) was "a gap the held-out data do not confirm" because the held-out side's own
+/// test, on half the data, did not reach 5 %. With two folds — the split as made, then its two sides
+/// swapped — each side is held out once, and the detection test pools them: the training and held-out
+/// totals summed, against each noise-only draw's two totals summed (noise_null.h, GapDetection::pooled; one
+/// Monte Carlo test, exact as each side's is).
+///
+/// The rule: where the held-out test alone detects a gap, nothing changes (one fold). Where it does not
+/// and the pooled test does, the diagnosis goes on in both folds on the pooled test, and names an effect
+/// only if both folds name it (the same effect and form: each fold's fit, made on one side, must earn its
+/// parameters on the other). A gap whose folds disagree is `unexplained`, saying what each named. Two folds
+/// rather than one pooled fit: the candidates' evidence stays held-out evidence, and asking both folds to
+/// agree is what keeps the second look at the data from adding false alarms.
+#include <string>
+#include <vector>
+
+#include "lane_keeping/gap/diagnosis_options.h"
+#include "lane_keeping/gap/report/gap_report.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+
+/// Whether a diagnosis decides on the pooled test: two_folds on, noise-only draws ran, the held-out test
+/// alone does not detect a gap and the pooled test does.
+bool decidesOnPooledTest(const GapDetection& detection, const DiagnosisOptions& options);
+
+/// A fold as the report lists it: the data it fitted on and scored on, and what its verdict named.
+GapFold foldOf(const GapReport& report, const std::vector<std::string>& training);
+
+/// Joins the second fold into the first's verdict (both diagnosed on the pooled test): the effect stands
+/// if both folds name it, with the two folds' figures in its reason; otherwise the verdict becomes
+/// `unexplained` (confidence 0.5), naming what each fold named. `folds` is report.folds (first, second).
+void poolFolds(GapVerdict* verdict, const GapDetection& detection, const std::vector<GapFold>& folds);
+
+}  // namespace diagnosis
+}  // namespace lane_keeping

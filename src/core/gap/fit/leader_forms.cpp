@@ -1,0 +1,109 @@
+#include "lane_keeping/gap/fit/leader_forms.h"
+
+#include <cstdio>
+#include <exception>
+#include <map>
+
+#include "lane_keeping/gap/fit/candidate_objective.h"
+#include "lane_keeping/gap/fit/closed_loop_checks.h"
+
+namespace lane_keeping {
+namespace diagnosis {
+namespace {
+
+std::vector<CandidateEffect> buildLeaderForms() {
+  std::vector<CandidateEffect> list;
+  CandidateEffect lugre;
+  lugre.name = "steering_friction";
+  lugre.form = "lugre";
+  lugre.description = "LuGre kingpin friction (Deur eq 9): the wheel sticks until the torque breaks it away";
+  // The same ranges as the tanh form's, so that the training gaps compare like with like.
+  // The level and viscous part in the tanh form's ranges, and the bristles' stiffness sigma0: the stick is
+  // a presliding deflection of T_c / sigma0, which must be small beside the wheel's motion for the wheel to
+  // stick (a tanh-like spring otherwise). Not known from a nominal that has no LuGre friction: fitted.
+  lugre.params = {{"coulomb", "N m", 1.0, 0.02, 200.0, true},
+                  {"viscous", "N m s/rad", 0.1, 0.01, 100.0, true},
+                  {"stiffness", "N m/rad", 1e4, 1e2, 1e6, true}};
+  lugre.subsystems = {"steering"};
+  lugre.apply = [](const std::vector<double>& p, SimConfig& c) {
+    c.steering.friction_model = "lugre";
+    c.steering.coulomb_friction = p[0];
+    c.steering.breakaway_friction = p[0];  // no Stribeck peak: one parameter for the level, as tanh's
+    c.steering.viscous_friction = p[1];
+    c.steering.friction_stiffness = p[2];
+  };
+  list.push_back(lugre);
+  CandidateEffect soft;
+  soft.name = "torque_limit";
+  soft.form = "soft";
+  soft.description = "the steering actuator saturates smoothly";
+  soft.params = {{"limit", "N m", 100.0, 0.5, 1e5, true}};
+  soft.subsystems = {"steering"};
+  soft.profile = true;
+  soft.apply = [](const std::vector<double>& p, SimConfig& c) {
+    c.steering.saturation = "soft";
+    c.steering.torque_limit = p[0];
+  };
+  list.push_back(soft);
+  return list;
+}
+
+std::string brief(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.4g", x);
+  return text;
+}
+
+}  // namespace
+
+const std::vector<CandidateEffect>& leaderForms() {
+  static const std::vector<CandidateEffect> list = buildLeaderForms();
+  return list;
+}
+
+CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& context, const DiagnosisOptions& options,
+                             std::vector<std::string>* notes) {
+  CandidateFit best;
+  if (leader.effect == nullptr || !leader.ok || !options.leader_forms) return best;
+  std::string compared;
+  for (const CandidateEffect& form : leaderForms()) {
+    if (form.name != leader.effect->name || form.params.size() < leader.theta.size()) continue;
+    if (options.progress) options.progress("fitting " + form.label() + " (the leader's other form)");
+    // Warm-started from the leader's parameters: the same quantities in the other shape.
+    // A parameter the leader lacks starts from its initial value.
+    std::vector<double> start = leader.theta;
+    for (std::size_t j = start.size(); j < form.params.size(); ++j) start.push_back(form.params[j].initial);
+    const std::map<std::string, std::vector<double>> warm{{form.label(), start}};
+    FitContext from_leader = context;
+    from_leader.warm_start = &warm;
+    CandidateFit fit;
+    try {
+      fit = fitCandidate(form, from_leader, options);
+      if (fit.ok && context.closed_loop_checks && !fit.loop_checked) {
+        const CandidateObjective objective(form, *context.nominal, *context.train, options.replay,
+                                           context.nominal_train->sigma1, context.available);
+        checkClosedLoop(objective, context, &fit);
+      }
+    } catch (const std::exception& e) {
+      fit.ok = false;
+      fit.note = std::string("fit failed: ") + e.what();
+    }
+    compared += ", " + form.form + " " + (fit.ok ? brief(fit.train_after) + " (held-out " + brief(fit.heldout_after) + ")" : "failed") +
+                (fit.ok && !fit.unbounded_on.empty() ? " (its closed loop leaves the logged bounds)" : "");
+    // Better on the training data, and on the held-out data too: a form with a parameter more must earn it.
+    if (fit.ok && fit.unbounded_on.empty() && fit.train_after < leader.train_after &&
+        fit.heldout_after < leader.heldout_after && (!best.ok || fit.train_after < best.train_after)) {
+      best = fit;
+    }
+  }
+  if (compared.empty()) return best;
+  const std::string leader_form = leader.effect->form.empty() ? "as fitted" : leader.effect->form;
+  notes->push_back(leader.effect->name + ": the leader's forms by their training gap (" + leader_form + " " +
+                   brief(leader.train_after) + " (held-out " + brief(leader.heldout_after) + ")" + compared + "): " +
+                   (best.ok ? best.effect->form + " stands for it (verdict, effects and how far)"
+                            : "the leader's form stands"));
+  return best;
+}
+
+}  // namespace diagnosis
+}  // namespace lane_keeping
