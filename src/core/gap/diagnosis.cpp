@@ -357,7 +357,14 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     if (report.notes.size() > notes_before) report.wall_seconds.emplace_back("leader's forms", secondsSince(form_start));
     if (leader_form.ok) {
       std::vector<std::string> ignored;
-      const std::vector<RankedEffect> ranked = rankFits({leader_form}, nominal, gap_before, &ignored);
+      std::vector<RankedEffect> ranked = rankFits({leader_form}, nominal, gap_before, &ignored);
+      // Net of the leader's knock-on where its ranking was (knock_on.h): the form's closed loop moves the
+      // subsystems it does not change as the leader's did.
+      const auto k = knock_on.find(winner->effect->label());
+      if (k != knock_on.end()) {
+        ranked.front().heldout_gap_after = gapAfterKnockOn(ranked.front(), leader_form, nominal_held, k->second);
+        ranked.front().shrink = gap_before > 0.0 ? 1.0 - ranked.front().heldout_gap_after / gap_before : 0.0;
+      }
       for (auto it = report.ranking.begin(); it != report.ranking.end(); ++it) {
         if (it->effect == winner->effect->name && it->form == winner->effect->form) {
           report.ranking.insert(it, ranked.front());
@@ -367,10 +374,10 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
       report.verdict.reason += "; fitted again in its " + leader_form.effect->form + " form, which fits the training data "
                                "better (" + briefNumber(winner->train_after) + " -> " +
                                briefNumber(leader_form.train_after) + "): held-out gap " + briefNumber(gap_before) +
-                               " -> " + briefNumber(leader_form.heldout_after);
+                               " -> " + briefNumber(ranked.front().heldout_gap_after);
       report.verdict.form = leader_form.effect->form;
-      report.verdict.gap_after = leader_form.heldout_after;
-      report.verdict.shrink = gap_before > 0.0 ? 1.0 - leader_form.heldout_after / gap_before : 0.0;
+      report.verdict.gap_after = ranked.front().heldout_gap_after;
+      report.verdict.shrink = ranked.front().shrink;
       winner = &leader_form;
     }
     say("fitting further effects on top of " + winner->effect->label());
