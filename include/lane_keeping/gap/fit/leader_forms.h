@@ -10,7 +10,8 @@
 ///
 /// Once the verdict names one of them, its leader forms are fitted too, warm-started from the leader's
 /// parameters (a parameter the leader lacks from its initial value), and the form that fits the training
-/// data better *and* leaves a smaller held-out gap (a form with a parameter more must earn it), and whose
+/// data better — by at least min_further_shrink of what the leader leaves there, as a further effect must —
+/// *and* leaves a smaller held-out gap (a form with a parameter more must earn it), and whose
 /// closed loop stays within the logged bounds, stands for the effect in the verdict, its effects and how
 /// far. Only for the leader: fitting them for every log would add two fits to every diagnosis (one with
 /// LuGre's stiff state) to change what only a leader's closed loop shows.
@@ -36,8 +37,8 @@ namespace diagnosis {
 const std::vector<CandidateEffect>& leaderForms();
 
 /// The leader's effect in each of its leader forms, fitted from the leader's parameters on the same data
-/// and scored; returns the best of them (by training gap) if it beats the leader's training and held-out
-/// gaps and its closed loop stays within the logged bounds (where the logs let it be checked), else a fit
+/// and scored; returns the best of them (by training gap) if it beats the leader's training gap by
+/// min_further_shrink and its held-out gap, and its closed loop stays within the logged bounds (where the logs let it be checked), else a fit
 /// with ok = false. A note says what was compared and what was chosen. Nothing with
 /// options.leader_forms off.
 CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& context, const DiagnosisOptions& options,

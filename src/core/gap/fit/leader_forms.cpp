@@ -90,8 +90,10 @@ CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& conte
     }
     compared += ", " + form.form + " " + (fit.ok ? brief(fit.train_after) + " (held-out " + brief(fit.heldout_after) + ")" : "failed") +
                 (fit.ok && !fit.unbounded_on.empty() ? " (its closed loop leaves the logged bounds)" : "");
-    // Better on the training data, and on the held-out data too: a form with a parameter more must earn it.
-    if (fit.ok && fit.unbounded_on.empty() && fit.train_after < leader.train_after &&
+    // Better on the training data by what a further effect must remove of what is left (min_further_shrink:
+    // forms the data barely tell apart keep the candidate's own, 0.1813 against 0.1811 on a limit whose soft
+    // closed loop was the worse), and on the held-out data too: a form with a parameter more must earn it.
+    if (fit.ok && fit.unbounded_on.empty() && fit.train_after < (1.0 - options.min_further_shrink) * leader.train_after &&
         fit.heldout_after < leader.heldout_after && (!best.ok || fit.train_after < best.train_after)) {
       best = fit;
     }
