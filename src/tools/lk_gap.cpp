@@ -39,7 +39,7 @@ void usage(std::ostream& out) {
   out << "usage: lk_gap --config nominal.yaml [--set key=value ...] --log run.csv|run.bag [--scenario run.yaml]\n"
          "              [--log ...] [--holdout other.csv|other.bag [--scenario other.yaml] ...] --report DIR\n"
          "              [--effects a,b] [--threads N] [--coarse-fit-stride K] [--noise-reference-draws N]\n"
-         "              [--time-budget HOURS] [--no-plots] [--quiet]\n"
+         "              [--one-fold] [--candidate-forms-only] [--time-budget HOURS] [--no-plots] [--quiet]\n"
          "  --config   the nominal configuration (the same YAML lk_simulate and the nodes use): the car, its\n"
          "             controllers and delays, shared by every run\n"
          "  --log      a log of a real run (CSV with DESIGN §5 columns, or a bag of the suite's topics)\n"
@@ -59,6 +59,10 @@ void usage(std::ostream& out) {
          "             gap and are refused; 0 = raw excess, no test; at most 1000)\n"
          "  --coarse-fit-stride K   fit each candidate coarse to fine: search on every K-th 2 s piece of the\n"
          "             training data, finish on all of it (default 3; 1: search all the data; docs/gap.md)\n"
+         "  --one-fold   where the held-out test alone misses a gap both sides together show, say so and stop\n"
+         "             (default: hold each side out in turn and name an effect both folds name; docs/gap.md)\n"
+         "  --candidate-forms-only   do not fit the leader's other form (LuGre kingpin friction for\n"
+         "             steering_friction, a soft saturation for torque_limit; docs/gap.md, \"How far\")\n"
          "  --time-budget HOURS   refuse logs whose diagnosis is estimated to take longer (default 1; the\n"
          "             estimate is printed when it exceeds 10 minutes; docs/reliability.md)\n";
 }
@@ -129,6 +133,8 @@ Arguments parseArguments(int argc, char** argv) {
       a.options.coarse_fit_stride = static_cast<std::size_t>(wholeNumberOption(arg, value(), 1, 1000));
     }
     else if (arg == "--time-budget") a.time_budget_hours = numberOption(arg, value(), 0.0, 1e4, "h");
+    else if (arg == "--one-fold") a.options.two_folds = false;
+    else if (arg == "--candidate-forms-only") a.options.leader_forms = false;
     else if (arg == "--no-plots") a.plots = false;
     else if (arg == "--quiet") a.quiet = true;
     else if (arg == "--help" || arg == "-h") {
