@@ -166,8 +166,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   // Where the held-out test alone misses the gap and both sides together see it, the diagnosis goes on in
   // two folds on the pooled test (fold_pooling.h); `decisive` is the test it goes on.
   const bool on_pooled = decidesOnPooledTest(report.detection, options);
-  GapDetection decisive = report.detection;
-  if (on_pooled) decisive.heldout = decisive.pooled;
+  const GapDetection decisive = decisiveDetection(report.detection, options);
   // An onset is where a gap sets in: with none detected, the excess is noise and so is its "onset".
   if (!decisive.heldout.detected && !report.detection.training.detected) {
     report.where.onsets.clear();
@@ -295,7 +294,6 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   context.where = &report.where;
   context.gap_before = gap_before;
   context.detection = report.detection;
-  context.pooled = on_pooled;
   context.partial_of = [&](const RankedEffect& ranked) {
     for (const auto& fit : fits) {
       if (fit.ok && fit.effect->name == ranked.effect && fit.effect->form == primaryForm(ranked.form)) {

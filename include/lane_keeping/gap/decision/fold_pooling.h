@@ -26,6 +26,10 @@ namespace diagnosis {
 /// alone does not detect a gap and the pooled test does.
 bool decidesOnPooledTest(const GapDetection& detection, const DiagnosisOptions& options);
 
+/// The tests the diagnosis goes on: `detection` with the pooled test in place of the held-out one where
+/// decidesOnPooledTest, else `detection` as it is.
+GapDetection decisiveDetection(const GapDetection& detection, const DiagnosisOptions& options);
+
 /// A fold as the report lists it: the data it fitted on and scored on, and what its verdict named.
 GapFold foldOf(const GapReport& report, const std::vector<std::string>& training);
 

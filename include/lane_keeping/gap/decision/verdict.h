@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "lane_keeping/common/brief_number.h"
 #include "lane_keeping/config/sim_config.h"
 #include "lane_keeping/gap/decision/modal_evidence.h"
 #include "lane_keeping/gap/decision/noise_null.h"
@@ -17,10 +18,6 @@
 
 namespace lane_keeping {
 namespace diagnosis {
-
-/// A figure in a sentence of the report for a reader: four significant digits (formatNumber keeps the
-/// round-trip digits configuration values need; "73.22625598146429 %" is not for reading).
-std::string briefNumber(double x);
 
 /// The fits as ranked effects, best first (bounded fits before unbounded ones, then by held-out gap),
 /// with parameters, uncertainties and the config overlay each adds to `nominal`. Notes on failed fits,
@@ -46,8 +43,6 @@ struct VerdictContext {
   const GapWhere* where = nullptr;       ///< the where-analysis (subsystem, nrmse and floor for the reason)
   double gap_before = 0.0;               ///< held-out gap of the nominal, net of the noise reference
   GapDetection detection;                ///< the calibrated tests on held-out and training data
-  /// Decided on the pooled test of both sides (fold_pooling.h): it stands in for the held-out test.
-  bool pooled = false;
   /// The partial-explanation analysis of a would-be winner (what it leaves; see partialExplanation).
   std::function<PartialExplanation(const RankedEffect&)> partial_of;
   /// Candidates (labels) that do not change the where-subsystem but whose own closed loop's noise-only

@@ -38,9 +38,9 @@ const std::vector<CandidateEffect>& leaderForms();
 
 /// The leader's effect in each of its leader forms, fitted from the leader's parameters on the same data
 /// and scored; returns the best of them (by training gap) if it beats the leader's training gap by
-/// min_further_shrink and its held-out gap, and its closed loop stays within the logged bounds (where the logs let it be checked), else a fit
-/// with ok = false. A note says what was compared and what was chosen. Nothing with
-/// options.leader_forms off.
+/// min_further_shrink and its held-out gap, and its closed loop stays within the logged bounds (where the
+/// logs let it be checked), else a fit with ok = false. A note says what was compared and what was chosen.
+/// Nothing with options.leader_forms off.
 CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& context, const DiagnosisOptions& options,
                              std::vector<std::string>* notes);
 

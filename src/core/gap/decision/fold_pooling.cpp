@@ -12,6 +12,12 @@ bool decidesOnPooledTest(const GapDetection& detection, const DiagnosisOptions& 
   return options.two_folds && detection.draws > 0 && !detection.heldout.detected && detection.pooled.detected;
 }
 
+GapDetection decisiveDetection(const GapDetection& detection, const DiagnosisOptions& options) {
+  GapDetection out = detection;
+  if (decidesOnPooledTest(detection, options)) out.heldout = detection.pooled;
+  return out;
+}
+
 GapFold foldOf(const GapReport& report, const std::vector<std::string>& training) {
   GapFold f;
   f.training = training;

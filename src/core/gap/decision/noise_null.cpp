@@ -231,11 +231,11 @@ GapDetection detectGap(const std::map<std::string, SubsystemScore>& train, const
   GapDetection d;
   d.draws = null.draws();
   d.false_alarm_rate = options.false_alarm_rate;
-  d.heldout = test(held, null.heldTotals(), options);
-  d.training = test(train, null.trainTotals(), options);
+  const std::vector<double> held_totals = null.heldTotals(), train_totals = null.trainTotals();
+  d.heldout = test(held, held_totals, options);
+  d.training = test(train, train_totals, options);
   // Both sides together: each draw's training and held-out totals summed, as the log's (the draws replay
   // both sides of one realisation, so the sums are exchangeable with the log's as each side's are).
-  const std::vector<double> held_totals = null.heldTotals(), train_totals = null.trainTotals();
   std::vector<double> pooled(std::min(held_totals.size(), train_totals.size()));
   for (std::size_t i = 0; i < pooled.size(); ++i) pooled[i] = train_totals[i] + held_totals[i];
   const double g_train = gapOf(train, {}), g_held = gapOf(held, {});

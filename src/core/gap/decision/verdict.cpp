@@ -2,11 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <limits>
 #include <sstream>
 
 #include "lane_keeping/config/param_readers.h"
+#include "lane_keeping/gap/decision/fold_pooling.h"
 #include "lane_keeping/gap/decision/winner_selection.h"
 #include "lane_keeping/gap/fit/candidate_effects.h"
 
@@ -17,12 +17,6 @@ namespace {
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
-
-std::string briefNumber(double x) {
-  char text[32];
-  std::snprintf(text, sizeof(text), "%.4g", x);
-  return text;
-}
 
 std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const SimConfig& nominal, double gap_before,
                                    std::vector<std::string>* notes) {
@@ -123,8 +117,7 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
   const bool pinned_winner = selection.winner_pinned;
   // On the pooled test (fold_pooling.h) it stands in for the held-out test; the loop's modes are still
   // read where the held-out test alone does not see the gap.
-  GapDetection detection = context.detection;
-  if (context.pooled) detection.heldout = detection.pooled;
+  const GapDetection detection = decisiveDetection(context.detection, options);
   std::ostringstream reason;
   auto unexplained = [&](double confidence) {
     v.effect = "unexplained";

@@ -1,19 +1,14 @@
 #include "lane_keeping/gap/fit/candidate_forms.h"
 
-#include <cstdio>
 #include <algorithm>
 #include <cmath>
 #include <map>
 
+#include "lane_keeping/common/brief_number.h"
+
 namespace lane_keeping {
 namespace diagnosis {
 namespace {
-
-std::string formatGap(double gap) {
-  char buffer[32];
-  std::snprintf(buffer, sizeof buffer, "%.4g", gap);
-  return buffer;
-}
 
 /// Whether fit a describes the training data better than fit b.
 bool fitsBetter(const CandidateFit& a, const CandidateFit& b) {
@@ -33,7 +28,7 @@ void keepBestForms(std::vector<CandidateFit>* fits, std::vector<std::string>* no
   for (std::size_t i = 0; i < fits->size(); ++i) {
     const CandidateFit& fit = (*fits)[i];
     const std::string name = formGroup(*fit.effect);
-    const std::string gap = fit.ok ? formatGap(fit.train_after) : "failed";
+    const std::string gap = fit.ok ? briefNumber(fit.train_after) : "failed";
     std::string& list = compared[name];
     list += (list.empty() ? "" : ", ") + (fit.effect->form.empty() ? name : fit.effect->form) + " " + gap;
     const auto it = best.find(name);

@@ -1,9 +1,9 @@
 #include "lane_keeping/gap/fit/leader_forms.h"
 
-#include <cstdio>
 #include <exception>
 #include <map>
 
+#include "lane_keeping/common/brief_number.h"
 #include "lane_keeping/gap/fit/candidate_objective.h"
 #include "lane_keeping/gap/fit/closed_loop_checks.h"
 
@@ -17,7 +17,6 @@ std::vector<CandidateEffect> buildLeaderForms() {
   lugre.name = "steering_friction";
   lugre.form = "lugre";
   lugre.description = "LuGre kingpin friction (Deur eq 9): the wheel sticks until the torque breaks it away";
-  // The same ranges as the tanh form's, so that the training gaps compare like with like.
   // The level and viscous part in the tanh form's ranges, and the bristles' stiffness sigma0: the stick is
   // a presliding deflection of T_c / sigma0, which must be small beside the wheel's motion for the wheel to
   // stick (a tanh-like spring otherwise). Not known from a nominal that has no LuGre friction: fitted.
@@ -46,12 +45,6 @@ std::vector<CandidateEffect> buildLeaderForms() {
   };
   list.push_back(soft);
   return list;
-}
-
-std::string brief(double x) {
-  char text[32];
-  std::snprintf(text, sizeof text, "%.4g", x);
-  return text;
 }
 
 }  // namespace
@@ -88,7 +81,7 @@ CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& conte
       fit.ok = false;
       fit.note = std::string("fit failed: ") + e.what();
     }
-    compared += ", " + form.form + " " + (fit.ok ? brief(fit.train_after) + " (held-out " + brief(fit.heldout_after) + ")" : "failed") +
+    compared += ", " + form.form + " " + (fit.ok ? briefNumber(fit.train_after) + " (held-out " + briefNumber(fit.heldout_after) + ")" : "failed") +
                 (fit.ok && !fit.unbounded_on.empty() ? " (its closed loop leaves the logged bounds)" : "");
     // Better on the training data by what a further effect must remove of what is left (min_further_shrink:
     // forms the data barely tell apart keep the candidate's own, 0.1813 against 0.1811 on a limit whose soft
@@ -101,7 +94,7 @@ CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& conte
   if (compared.empty()) return best;
   const std::string leader_form = leader.effect->form.empty() ? "as fitted" : leader.effect->form;
   notes->push_back(leader.effect->name + ": the leader's forms by their training gap (" + leader_form + " " +
-                   brief(leader.train_after) + " (held-out " + brief(leader.heldout_after) + ")" + compared + "): " +
+                   briefNumber(leader.train_after) + " (held-out " + briefNumber(leader.heldout_after) + ")" + compared + "): " +
                    (best.ok ? best.effect->form + " stands for it (verdict, effects and how far)"
                             : "the leader's form stands"));
   return best;

@@ -65,10 +65,15 @@ TEST(FoldPooling, DecidesOnThePooledTestOnlyWhereTheHeldOutTestAloneMisses) {
   GapDetection d;
   d.draws = 19;
   d.pooled.detected = true;
+  d.pooled.p_value = 0.05;
+  d.heldout.p_value = 0.1;
   DiagnosisOptions options;
   EXPECT_TRUE(decidesOnPooledTest(d, options));
+  EXPECT_TRUE(decisiveDetection(d, options).heldout.detected);  // the pooled test in the held-out test's place
+  EXPECT_DOUBLE_EQ(decisiveDetection(d, options).heldout.p_value, 0.05);
   d.heldout.detected = true;  // one fold is enough
   EXPECT_FALSE(decidesOnPooledTest(d, options));
+  EXPECT_DOUBLE_EQ(decisiveDetection(d, options).heldout.p_value, 0.1);  // its own test stands
   d.heldout.detected = false;
   options.two_folds = false;
   EXPECT_FALSE(decidesOnPooledTest(d, options));
