@@ -2,6 +2,7 @@
 /// The settings of a gap diagnosis (diagnosis.h): data split, detection and acceptance thresholds,
 /// the replays' options, parallelism and progress reporting.
 #include <functional>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,10 @@ struct DiagnosisOptions {
   /// A single run whose gap sets in mid-run (GapWhere::onset) and that no candidate explains over the
   /// whole log is diagnosed again on the part from the onset on (gap_onset.h).
   bool from_onset = true;
+  /// [s] in the logs' own time: where the diagnosed effect sets in (the diagnosis from a gap's onset sets it,
+  /// gap_onset.h). How far's corrected closed loop switches the effect on there, as the car met it, not from
+  /// the log's first sample; NaN: on from the start.
+  double effect_onset = std::numeric_limits<double>::quiet_NaN();
   /// Where the held-out test alone does not detect a gap and both sides together do, the diagnosis is run
   /// again with training and held-out data swapped, and an effect is named only if both folds name it
   /// (fold_pooling.h; issue 47, kind 1).

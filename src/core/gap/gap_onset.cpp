@@ -42,6 +42,7 @@ GapReport diagnoseFromOnset(const SimConfig& nominal, const std::vector<GapRun>&
   const double onset = whole.where.onset;
   DiagnosisOptions again = options;
   again.from_onset = false;
+  again.effect_onset = onset;  // how far switches the effect on where the gap sets in
   GapReport part = diagnoseGap(nominal, {runFromOnset(training[0], onset)}, {}, again, artifacts);
   const std::string sets_in = "the gap sets in at t = " + seconds(onset) + " (before it the nominal model matches the "
                               "log within noise)";

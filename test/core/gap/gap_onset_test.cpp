@@ -10,6 +10,7 @@
 #include "lane_keeping/config/timed_change.h"
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/gap_onset.h"
+#include "lane_keeping/gap/report/diagnosis_artifacts.h"
 #include "lane_keeping/sim/closed_loop.h"
 
 namespace lane_keeping {
@@ -158,6 +159,51 @@ TEST(GapOnset, TheSingleLogModeListsItsOnsetToo) {
   ASSERT_EQ(r.where.onsets.size(), 1u);
   EXPECT_EQ(r.where.onsets[0].t, r.where.onset);
   EXPECT_NEAR(r.where.onsets[0].t - r.where.onsets[0].log_t0, 200.0 / 15.0, 1.0);
+}
+
+// The plots' series of a diagnosis from the onset are the cut log's: the whole log's diagnosis fills the
+// same artifacts first, and the overlay's logged yaw rate and steering angle (appended to the whole log's
+// columns) showed the log's first seconds against the cut's times, the residuals likewise.
+TEST(GapOnset, ThePlotsOfADiagnosisFromTheOnsetShowTheCutLog) {
+  const BenchmarkCase c = crosswind("onset", {"disturbance.lateral_force=500", "disturbance.yaw_moment=100",
+                                              "disturbance.onset_x=200"});
+  const GapLog log = generateBenchmarkLog(c, SensorNoise{}, 100.0);
+  DiagnosisOptions options;
+  options.effects = {"lateral_disturbance"};
+  DiagnosisArtifacts artifacts;
+  const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {gapRun(log, benchmarkCaseNominal(c))}, {}, options, &artifacts);
+  ASSERT_EQ(r.verdict.effect, "lateral_disturbance") << r.verdict.reason;
+  ASSERT_TRUE(std::isfinite(r.where.onset));
+  ASSERT_FALSE(artifacts.overlay_t.empty());
+  EXPECT_GT(artifacts.overlay_t.front(), r.where.onset - kOnsetLeadIn - 0.02);
+  for (const auto& [name, column] : artifacts.overlay) EXPECT_EQ(column.size(), artifacts.overlay_t.size()) << name;
+  for (const auto& [name, column] : artifacts.residual) EXPECT_EQ(column.size(), artifacts.residual_t.size()) << name;
+  // The overlay's times are log samples: its logged channels are the log's values there.
+  std::size_t row = 0;
+  for (std::size_t k = 0; k < artifacts.overlay_t.size(); k += 97) {
+    while (row + 1 < log.t.size() && log.t[row] < artifacts.overlay_t[k] - 1e-9) ++row;
+    ASSERT_NEAR(log.t[row], artifacts.overlay_t[k], 1e-9);
+    EXPECT_NEAR(artifacts.overlay.at("yaw_rate_real")[k], log.yaw_rate[row], 1e-12) << artifacts.overlay_t[k];
+    EXPECT_NEAR(artifacts.overlay.at("delta_real")[k], log.delta[row], 1e-12) << artifacts.overlay_t[k];
+    EXPECT_NEAR(artifacts.overlay.at("y_real")[k], log.y[row], 1e-12) << artifacts.overlay_t[k];
+  }
+}
+
+// How far replays the corrected closed loop with the effect switched on where the gap sets in: from the
+// cut log's first sample (a second before the onset) it steered against a crosswind not yet blowing, and
+// the independent family's onset crosswinds shrank by 30-31 % net in closed loop against 90-92 % held out.
+TEST(GapOnset, HowFarSwitchesTheEffectOnWhereTheGapSetsIn) {
+  const BenchmarkCase c = crosswind("onset", {"disturbance.lateral_force=500", "disturbance.yaw_moment=100",
+                                              "disturbance.onset_x=200"});
+  DiagnosisOptions options;
+  options.effects = {"lateral_disturbance"};
+  const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {generateBenchmarkLog(c, SensorNoise{}, 100.0)}, {}, options);
+  ASSERT_EQ(r.verdict.effect, "lateral_disturbance") << r.verdict.reason;
+  bool switched = false;
+  for (const std::string& note : r.notes) switched = switched || note.find("how far: the effect is switched on at t = ") == 0;
+  EXPECT_TRUE(switched) << gapReportJson(r);
+  // 0.30 with the effect on from the cut's start
+  EXPECT_GT(1.0 - r.how_far.net_after / r.how_far.net_before, 0.6) << gapReportJson(r);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
+#include "lane_keeping/config/timed_change.h"
 #include "lane_keeping/gap/log/log_signals.h"
 
 namespace lane_keeping {
@@ -29,8 +30,10 @@ struct ClosedLoopReplay {
   std::string note;                                      ///< why the replay failed or diverged ("" if it did not)
 };
 
-/// Simulates the closed loop of `config` over the whole log and compares y, yaw rate and delta.
-ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log, double sigma1_0);
+/// Simulates the closed loop of `config` over the whole log and compares y, yaw rate and delta. `changes`
+/// (times from the log's start) take effect mid-run, as lk_simulate --change makes them (change_schedule.h).
+ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log, double sigma1_0,
+                                  const std::vector<TimedChange>& changes = {});
 
 /// What a perfect model's closed-loop replay would leave of each channel's gap (y, yaw rate, delta): the log's
 /// white noise at `sigma` (m, rad/s, rad; estimatedNoise) over the channel's RMS(measured), as `gap` divides.

@@ -324,6 +324,10 @@ GapWhere whereAnalysis(const Evaluation& ev, const std::vector<Dataset>& data, d
       series_by_name[name] = subsystemSeries(r);
       for (const auto& p : series_by_name[name]) times.insert(p.first);
     }
+    // Written afresh (a diagnosis from the onset writes them after the whole log's: appended columns were
+    // the whole log's residuals against the later times, and a subsystem only the first replayed stayed).
+    artifacts->residual.clear();
+    artifacts->spectrum.clear();
     artifacts->residual_t.assign(times.begin(), times.end());
     for (const auto& [name, s] : series_by_name) {
       std::map<double, double> lookup(s.begin(), s.end());

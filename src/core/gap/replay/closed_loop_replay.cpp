@@ -49,13 +49,14 @@ SimConfig closedLoopConfigOnLog(SimConfig config, const LogSignals& log, double 
   return withLoggedSpeed(std::move(config), log);  // a speed that varies is followed in time, as the car drove
 }
 
-ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log, double sigma1_0) {
+ClosedLoopReplay closedLoopReplay(const SimConfig& config, const LogSignals& log, double sigma1_0,
+                                  const std::vector<TimedChange>& changes) {
   ClosedLoopReplay out;
   const double t0 = log.start();
   const double rate = std::min(1000.0, 1.0 / std::max(1e-4, log.log().medianStep()));
   RunResult run;
   try {
-    run = ClosedLoop(closedLoopConfigOnLog(config, log, sigma1_0, log.end() - t0, rate)).run();
+    run = ClosedLoop(closedLoopConfigOnLog(config, log, sigma1_0, log.end() - t0, rate), changes).run();
   } catch (const std::exception& e) {
     out.note = std::string("closed-loop replay failed: ") + e.what();
     return out;
