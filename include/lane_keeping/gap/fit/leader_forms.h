@@ -1,9 +1,11 @@
 #pragma once
-/// The form that reproduces the effect (issue 47, kind 7). Two candidates stand for effects whose shape the
+/// The form that reproduces the effect (issue 47, kind 7). Three candidates stand for effects whose shape the
 /// project models better than the candidate does: steering_friction fits the smooth tanh law (Coulomb and
 /// viscous), where real kingpin friction sticks (LuGre, Deur eq 9: a bristle state that holds the wheel
 /// until the torque breaks it away), and torque_limit fits a hard clamp, where an actuator's saturation is
-/// often soft (M / (1 + (M / limit)^4)^(1/4)). On the open-loop replays the smooth forms remove the gap
+/// often soft (M / (1 + (M / limit)^4)^(1/4)), and cornering_stiffness scales the tires' stiffness, where a
+/// patch of another length (inflation, load) changes the aligning stiffness the steering feels by another
+/// factor (C ~ k a^2, aligning ~ k a^3). On the open-loop replays the smooth forms remove the gap
 /// nearly as well (an 8 N m kingpin friction with plain stick plateaus: tanh's Coulomb 9.5 N m, 95 %
 /// held-out shrink), but the corrected closed loop shows no plateau (16 % closed-loop shrink), and the hard
 /// clamp cannot both cut an initial correction's torque and let the loop recover.
@@ -23,6 +25,10 @@
 ///                             deflection T_c / sigma0 must be      .friction_stiffness
 ///                             small for the wheel to stick)
 ///   torque_limit       soft   limit (N m)                          steering.saturation = soft, .torque_limit
+///   cornering_stiffness contact_length  front_scale, rear_scale     tire_front/rear.contact_half_length (and an
+///                             (the patch's length: C ~ k a^2 and   explicit lugre.contact_length) times the scale;
+///                             the aligning stiffness ~ k a^3,      its start: the square roots of the leader's
+///                             where the candidate scales k)        stiffness scales
 #include <string>
 #include <vector>
 

@@ -45,7 +45,17 @@ TEST(LeaderForms, TheyWriteTheShapesTheSimulatorModels) {
   EXPECT_TRUE(d.steering.softSaturation());
   EXPECT_DOUBLE_EQ(d.steering.torque_limit, 40.0);
   EXPECT_NO_THROW(d.validate());
+  const CandidateEffect& patch = leaderForm("cornering_stiffness");
+  EXPECT_EQ(patch.form, "contact_length");
+  ASSERT_EQ(patch.params.size(), candidateEffect("cornering_stiffness").params.size());
+  SimConfig e;
+  patch.apply({0.9, 0.92}, e);
+  EXPECT_DOUBLE_EQ(e.tire_front.contact_half_length, 0.09);
+  EXPECT_DOUBLE_EQ(e.tire_rear.contact_half_length, 0.092);
+  EXPECT_DOUBLE_EQ(e.tire_front.lateral_stiffness, SimConfig{}.tire_front.lateral_stiffness);  // k, not the patch
+  EXPECT_NO_THROW(e.validate());
   // The verdict's subsystem rules know them.
+  EXPECT_TRUE(effectChangesSubsystem("cornering_stiffness", "steering", "contact_length"));
   EXPECT_TRUE(effectChangesSubsystem("steering_friction", "steering", "lugre"));
   EXPECT_TRUE(effectChangesSubsystem("torque_limit", "steering", "soft"));
   EXPECT_FALSE(effectChangesSubsystem("torque_limit", "chassis", "soft"));
@@ -90,6 +100,47 @@ TEST(LeaderForms, ASoftLimitIsFittedSoftAndItsClosedLoopFollowsTheLog) {
   EXPECT_EQ(soft.verdict.effects[0].config.at("steering.saturation"), "soft");
   EXPECT_LT(soft.how_far.net_after, 0.5 * hard.how_far.net_after);
   EXPECT_GT(soft.verdict.shrink, 0.9);
+}
+
+// The candidates' family's shorter contact patches (a = 0.09 / 0.092 m for the nominal 0.1: C ~ k a^2 and the
+// aligning stiffness ~ k a^3) against the independent family's softer tread (k 1.4e6 for 2e6 N/m^2, a the
+// same). The candidate scales k: on the patch it leaves 30 % of the held-out gap and its closed loop keeps
+// 0.085 net of noise (the truth's patch: 0.0024); the patch's form recovers the lengths and closes both. On
+// the tread the candidate's own form stands: the patch's fits worse (training gap 0.075 against 0.002).
+TEST(LeaderForms, APatchOfAnotherLengthIsFittedAsOneAndASofterTreadIsNot) {
+  DiagnosisOptions options;
+  options.effects = {"cornering_stiffness", "road_friction"};
+  const BenchmarkCase patch = benchmarkCase("cornering_stiffness-small-lane_change");
+  const GapLog log = generateBenchmarkLog(patch, SensorNoise{}, 100.0);
+  const GapReport with = diagnoseGap(benchmarkCaseNominal(patch), {log}, {}, options);
+  options.leader_forms = false;
+  const GapReport without = diagnoseGap(benchmarkCaseNominal(patch), {log}, {}, options);
+  std::printf("[ measured ] patch: held-out shrink %.3f -> %.3f, closed-loop gap net of noise %.4g -> %.4g (k scaled), "
+              "-> %.4g (%s)\n", without.verdict.shrink, with.verdict.shrink, without.how_far.net_before,
+              without.how_far.net_after, with.how_far.net_after, with.verdict.form.c_str());
+  ASSERT_EQ(with.verdict.effect, "cornering_stiffness") << with.verdict.reason;
+  EXPECT_EQ(with.verdict.form, "contact_length") << with.verdict.reason;
+  ASSERT_FALSE(with.verdict.effects.empty());
+  EXPECT_NEAR(with.verdict.effects[0].params.at("front_scale"), 0.90, 0.01);
+  EXPECT_NEAR(with.verdict.effects[0].params.at("rear_scale"), 0.92, 0.01);
+  EXPECT_EQ(without.verdict.form, "");
+  EXPECT_GT(with.verdict.shrink, without.verdict.shrink + 0.1);
+  EXPECT_LT(with.how_far.net_after, 0.3 * without.how_far.net_after);
+
+  options.leader_forms = true;
+  BenchmarkCase tread;
+  for (const BenchmarkCase& k : independentCases()) {
+    if (k.id == "cornering_stiffness-pair-sinusoid-lane_change") tread = k;
+  }
+  ASSERT_FALSE(tread.id.empty()) << "the independent family's cornering stiffness pair is gone";
+  const BenchmarkCase other = heldoutRunOf(tread);
+  const GapRun training = gapRun(generateBenchmarkLog(tread, SensorNoise{}, 100.0), benchmarkCaseNominal(tread));
+  const GapRun heldout = gapRun(generateBenchmarkLog(other, SensorNoise{}, 100.0), benchmarkCaseNominal(other));
+  const GapReport scaled = diagnoseGap(benchmarkCaseNominal(tread), {training}, {heldout}, options);
+  ASSERT_EQ(scaled.verdict.effect, "cornering_stiffness") << scaled.verdict.reason;
+  EXPECT_EQ(scaled.verdict.form, "") << scaled.verdict.reason;
+  ASSERT_FALSE(scaled.verdict.effects.empty());
+  EXPECT_NEAR(scaled.verdict.effects[0].params.at("front_scale"), 0.7, 0.03);
 }
 
 }  // namespace
