@@ -384,10 +384,21 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     // Sensors before physics, several at once: the sensor errors' own chain against the physical leader's
     // (sensor_led_selection.h).
     const CandidateFit* sensor_first = winner->effect->sensor ? nullptr : sensorLeader(fits, report.where.subsystem, options);
+    // A physical chain that leaves nothing beyond the noise-only reference cannot lose the lead to one of
+    // sensor errors, which must be complete where it is not (sensorsLead): that chain is not fitted.
+    if (sensor_first != nullptr && more.gap_after <= 0.0) {
+      report.notes.push_back("sensor errors before physics: the physical leader's chain leaves nothing beyond the "
+                             "noise-only reference (held-out gap " + briefNumber(more.gap_after) +
+                             "): the sensor errors' own chain, from " + sensor_first->effect->label() +
+                             ", was not fitted");
+      sensor_first = nullptr;
+    }
     if (sensor_first != nullptr) {
       say("fitting further effects on top of " + sensor_first->effect->label() + " (the sensor errors' own explanation)");
+      const Clock::time_point sensors_start = Clock::now();
       ForwardSelection sensors =
           forwardSelection(*sensor_first, candidates, fits, fit_context, null, gap_before, options);
+      report.wall_seconds.emplace_back("sensor errors' chain", secondsSince(sensors_start));
       std::string why;
       const RankedEffect* first = nullptr;
       for (const auto& r : report.ranking) {
