@@ -443,6 +443,19 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   }
   howFar(winner, nominal_held, heldout.empty() ? train_runs : held_runs, how_far_options, &report, artifacts);
   if (options.closed_loop) report.wall_seconds.emplace_back("how_far", secondsSince(how_far_start));
+  // A verdict whose corrected closed loop drives farther from the held-out runs than the nominal's is
+  // contradicted by them (how_far.h): unexplained, the replays' choice kept in the reason and the ranking.
+  const std::string contradicted = closedLoopContradicts(report);
+  if (!contradicted.empty()) {
+    GapVerdict v;
+    v.effect = "unexplained";
+    v.gap_before = report.verdict.gap_before;
+    v.gap_after = report.verdict.gap_before;
+    v.combined_gap_after = report.verdict.gap_before;
+    v.confidence = 0.5;
+    v.reason = contradicted;
+    report.verdict = v;
+  }
 
   // ---- 5. A gap that sets in mid-run, unexplained over the whole log: again from its onset (gap_onset.h)
   if (diagnoseFromOnsetApplies(report, training, heldout, options)) {

@@ -30,6 +30,16 @@ constexpr double kClosedLoopVisible = 0.5;
 /// plateaus removed 95 % open loop and 16 % in closed loop; "" otherwise.
 std::string closedLoopStillMisses(const GapReport& report);
 
+/// The closed loop contradicts the verdict: with the named effects the held-out runs' closed-loop replay is
+/// farther from them than the nominal's, net of the logs' noise, by more than kClosedLoopVisible of the noise
+/// floor — the change the closed loop would see at all. The replays took the log's own inputs and found a
+/// shape that fits them (the candidates' out-of-list dead bands, fitted as tanh friction: 54 % held out),
+/// but a simulation with it drives farther from the car (their net closed-loop gaps 0.034 -> 0.048 and
+/// 0.043 -> 0.062, 1.14 and 0.80 of their floors; no right verdict of either benchmark family is worse by more
+/// than 0.07 of its floor). Returns the verdict's reason for `unexplained`, or "" where it is not
+/// contradicted (no closed-loop replay, or a verdict already unexplained).
+std::string closedLoopContradicts(const GapReport& report);
+
 /// Fills report->how_far: per-subsystem held-out excess before (`nominal_held`) and after (`winner`'s
 /// held-out scores; the nominal's when there is no winner), and — if options.closed_loop — the RMS over
 /// `runs` of the closed-loop replay gap with each run's configuration and with the winner added. Notes on

@@ -48,6 +48,25 @@ std::string closedLoopStillMisses(const GapReport& report) {
   return text;
 }
 
+std::string closedLoopContradicts(const GapReport& report) {
+  const ClosedLoopGap& h = report.how_far;
+  const GapVerdict& v = report.verdict;
+  if (v.effect.empty() || v.effect == "unexplained") return "";
+  if (!std::isfinite(h.net_before) || !std::isfinite(h.net_after) || !std::isfinite(h.noise_floor)) return "";
+  if (!(h.net_after - h.net_before > kClosedLoopVisible * h.noise_floor)) return "";
+  std::string named = v.effect + (v.form.empty() ? "" : " (" + v.form + ")");
+  if (v.effects.size() > 1) named += " with " + std::to_string(v.effects.size() - 1) + " further effect(s)";
+  const double open = v.effects.size() > 1 ? v.combined_shrink : v.shrink;
+  char figures[256];
+  std::snprintf(figures, sizeof figures,
+                "removes %.0f %% of the held-out gap in the replays, but with it the held-out closed loop is farther "
+                "from the logs than the nominal's: net of the logs' noise %.3g -> %.3g (floor %.3g)",
+                100.0 * open, h.net_before, h.net_after, h.noise_floor);
+  return named + " " + figures + ": the closed loop contradicts it, so no effect is named (the replays' fit "
+         "reproduces the logged inputs' response, not the loop it closes: an effect outside the list may "
+         "imitate it there)";
+}
+
 void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
             const std::vector<RunData>& runs, const DiagnosisOptions& options,
             GapReport* report, DiagnosisArtifacts* artifacts) {

@@ -1,11 +1,15 @@
 // "How far" in closed loop (how_far.h, issue 47 kind 7): a verdict the replays name but whose corrected closed
-// loop closes much less of its gap, net of the logs' noise, than the replays do is said to still miss.
+// loop closes much less of its gap, net of the logs' noise, than the replays do is said to still miss; one whose
+// corrected closed loop is farther from the logs than the nominal's is contradicted, and left unexplained.
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <limits>
 #include <string>
 
+#include "gap_benchmark/benchmark_cases.h"
 #include "lane_keeping/gap/decision/how_far.h"
+#include "lane_keeping/gap/diagnosis.h"
 
 namespace lane_keeping {
 namespace diagnosis {
@@ -55,6 +59,49 @@ TEST(HowFar, NoNoteWithoutAVerdictByTheReplaysOrAGapNetOfNoise) {
   r.verdict.effects[0].sensor = true;  // a sensor error need not move y, yaw rate or delta
   EXPECT_EQ(closedLoopStillMisses(r), "");
   EXPECT_EQ(closedLoopStillMisses(frictionReport(std::numeric_limits<double>::quiet_NaN(), 0.05)), "");
+}
+
+// The closed loop contradicts a verdict whose corrected loop drives farther from the held-out runs than the
+// nominal's by more than half the noise floor: the candidates' out-of-list dead bands named steering_friction
+// (net 0.0338 -> 0.0480, floor 0.0125; 0.0433 -> 0.0621, floor 0.0235). The right verdicts of both families
+// stay within 0.07 of their floors (a column compliance: 0.0096 -> 0.0097, floor 0.0239).
+TEST(HowFar, ACorrectedClosedLoopFartherFromTheLogsContradictsTheVerdict) {
+  GapReport dead_band = frictionReport(0.0338, 0.0480);
+  dead_band.how_far.noise_floor = 0.0125;
+  dead_band.verdict.shrink = 0.542;
+  const std::string why = closedLoopContradicts(dead_band);
+  EXPECT_NE(why.find("steering_friction removes 54 % of the held-out gap"), std::string::npos) << why;
+  EXPECT_NE(why.find("0.0338 -> 0.048 (floor 0.0125)"), std::string::npos) << why;
+  EXPECT_NE(why.find("the closed loop contradicts it"), std::string::npos) << why;
+  GapReport sinusoid = frictionReport(0.0433, 0.0621);
+  sinusoid.how_far.noise_floor = 0.0235;  // 0.80 of the floor
+  EXPECT_NE(closedLoopContradicts(sinusoid), "");
+  GapReport compliance = frictionReport(0.0096, 0.0097);
+  compliance.verdict.effect = "steering_compliance";
+  compliance.how_far.noise_floor = 0.0239;
+  EXPECT_EQ(closedLoopContradicts(compliance), "");
+  EXPECT_EQ(closedLoopContradicts(frictionReport(0.02, 0.0299)), "");  // worse, but by less than half the floor
+  EXPECT_NE(closedLoopContradicts(frictionReport(0.02, 0.0301)), "");
+  EXPECT_EQ(closedLoopContradicts(frictionReport(0.1, 0.084)), "");  // misses, but closer than the nominal
+  GapReport unexplained = frictionReport(0.0338, 0.0480);
+  unexplained.verdict.effect = "unexplained";
+  EXPECT_EQ(closedLoopContradicts(unexplained), "");
+  EXPECT_EQ(closedLoopContradicts(frictionReport(std::numeric_limits<double>::quiet_NaN(), 0.05)), "");  // not run
+}
+
+// The whole diagnosis of the candidates' family's large dead band on a lane change (out of the list): the
+// replays fit it as tanh friction, whose closed loop drives farther from the held-out blocks; unexplained.
+TEST(HowFar, TheOutOfListDeadBandIsNotNamedSteeringFriction) {
+  const BenchmarkCase c = benchmarkCase("dead_band-large-lane_change");
+  DiagnosisOptions options;
+  options.effects = {"steering_friction", "torque_limit"};
+  const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {generateBenchmarkLog(c)}, {}, options);
+  std::printf("[ measured ] net closed-loop gap %.4g -> %.4g, floor %.4g: %s\n", r.how_far.net_before,
+              r.how_far.net_after, r.how_far.noise_floor, r.verdict.reason.c_str());
+  EXPECT_EQ(r.verdict.effect, "unexplained") << r.verdict.reason;
+  EXPECT_NE(r.verdict.reason.find("the closed loop contradicts it"), std::string::npos) << r.verdict.reason;
+  ASSERT_FALSE(r.ranking.empty());
+  EXPECT_EQ(r.ranking.front().effect, "steering_friction");  // what the replays chose, kept in the ranking
 }
 
 }  // namespace
