@@ -446,16 +446,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   // A verdict whose corrected closed loop drives farther from the held-out runs than the nominal's is
   // contradicted by them (how_far.h): unexplained, the replays' choice kept in the reason and the ranking.
   const std::string contradicted = closedLoopContradicts(report);
-  if (!contradicted.empty()) {
-    GapVerdict v;
-    v.effect = "unexplained";
-    v.gap_before = report.verdict.gap_before;
-    v.gap_after = report.verdict.gap_before;
-    v.combined_gap_after = report.verdict.gap_before;
-    v.confidence = 0.5;
-    v.reason = contradicted;
-    report.verdict = v;
-  }
+  if (!contradicted.empty()) report.verdict = unexplainedVerdict(report.verdict.gap_before, contradicted);
 
   // ---- 5. A gap that sets in mid-run, unexplained over the whole log: again from its onset (gap_onset.h)
   if (diagnoseFromOnsetApplies(report, training, heldout, options)) {

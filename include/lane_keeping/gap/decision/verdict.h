@@ -62,5 +62,10 @@ const ModalSupport* modalWinner(const std::vector<ModalSupport>& modal);
 GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const VerdictContext& context,
                          const DiagnosisOptions& options);
 
+/// A verdict naming no effect, where the diagnosis's own evidence overrules the one it had (folds that do
+/// not agree, fold_pooling.h; a closed loop that drives farther from the logs, how_far.h): the held-out gap
+/// left as it was (`gap_before`), confidence 0.5, `reason` saying why.
+GapVerdict unexplainedVerdict(double gap_before, const std::string& reason);
+
 }  // namespace diagnosis
 }  // namespace lane_keeping

@@ -73,15 +73,7 @@ void poolFolds(GapVerdict* verdict, const GapDetection& detection, const std::ve
     }
     return;
   }
-  GapVerdict v;
-  v.effect = "unexplained";
-  v.gap_before = verdict->gap_before;
-  v.gap_after = verdict->gap_before;
-  v.shrink = 0.0;
-  v.confidence = 0.5;
-  v.combined_gap_after = verdict->gap_before;
-  v.reason = why.str() + ": the folds do not agree, not diagnosed";
-  *verdict = v;
+  *verdict = unexplainedVerdict(verdict->gap_before, why.str() + ": the folds do not agree, not diagnosed");
 }
 
 }  // namespace diagnosis

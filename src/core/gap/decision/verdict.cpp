@@ -18,6 +18,18 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 
+GapVerdict unexplainedVerdict(double gap_before, const std::string& reason) {
+  GapVerdict v;
+  v.effect = "unexplained";
+  v.gap_before = gap_before;
+  v.gap_after = gap_before;
+  v.shrink = 0.0;
+  v.confidence = 0.5;
+  v.combined_gap_after = gap_before;
+  v.reason = reason;
+  return v;
+}
+
 std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const SimConfig& nominal, double gap_before,
                                    std::vector<std::string>* notes) {
   std::vector<RankedEffect> ranking;
