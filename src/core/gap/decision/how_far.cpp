@@ -120,7 +120,7 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
                           " s, where the gap sets in (the corrected closed loop is the nominal's before it)";
           return;
         }
-        // A change a running loop cannot take (one that adds a state: a friction or tire model of its own):
+        // A change a running loop cannot take (one that adds a state: a compliant column, a distributed tire):
         // on from the start, as everywhere else, saying so.
         from_onset[i] = "how far: the effect could not be switched on at its onset (" + timed.note +
                         "): the corrected closed loop has it from the log's start";

@@ -3,6 +3,7 @@
 // loop stays bounded.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 
@@ -130,6 +131,32 @@ TEST(ClosedLoopReplay, AConfigurationThatCannotRunCountsAsDivergedAtTheStart) {
   EXPECT_EQ(d.time, 0.0);
   EXPECT_NE(d.message.find("mass"), std::string::npos) << d.message;
   EXPECT_FALSE(closedLoopReplay(bad, log, kNaN).note.empty());
+}
+
+// How far's onset timing (how_far.cpp) gives the replay the effect as changes at the onset. A change a running
+// loop can take holds from its time: the loop matches the nominal's before it and leaves it after. One that
+// would add a state (a compliant column on a rigid one) is refused: no gap, a note — where how far falls back
+// to the effect from the log's start. (LuGre kingpin friction is taken: its bristle state is always there.)
+TEST(ClosedLoopReplay, ChangesMidRunHoldFromTheirTimeOrAreRefusedWithANote) {
+  const LogSignals log = nominalLog();
+  const ClosedLoopReplay plain = closedLoopReplay(nominal(), log, kNaN);
+  const ClosedLoopReplay gust = closedLoopReplay(nominal(), log, kNaN, {{5.0, "disturbance.lateral_force", "800"}});
+  EXPECT_TRUE(gust.note.empty()) << gust.note;
+  ASSERT_EQ(gust.y.size(), plain.y.size());
+  double before = 0.0, after = 0.0;
+  for (std::size_t i = 0; i < gust.t.size(); ++i) {
+    const double d = std::fabs(gust.y[i] - plain.y[i]);
+    (gust.t[i] - log.start() < 5.0 ? before : after) = std::max(gust.t[i] - log.start() < 5.0 ? before : after, d);
+  }
+  EXPECT_EQ(before, 0.0);
+  EXPECT_GT(after, 0.01);
+  EXPECT_GT(gust.gap, plain.gap);
+  const ClosedLoopReplay column = closedLoopReplay(nominal(), log, kNaN, {{5.0, "steering.column_stiffness", "2000"}});
+  EXPECT_FALSE(std::isfinite(column.gap));
+  EXPECT_NE(column.note.find("closed-loop replay failed"), std::string::npos) << column.note;
+  EXPECT_NE(column.note.find("changes the plant model's state"), std::string::npos) << column.note;
+  const ClosedLoopReplay lugre = closedLoopReplay(nominal(), log, kNaN, {{5.0, "steering.friction_model", "lugre"}});
+  EXPECT_TRUE(std::isfinite(lugre.gap)) << lugre.note;
 }
 
 }  // namespace
