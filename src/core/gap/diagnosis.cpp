@@ -384,13 +384,14 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     // Sensors before physics, several at once: the sensor errors' own chain against the physical leader's
     // (sensor_led_selection.h).
     const CandidateFit* sensor_first = winner->effect->sensor ? nullptr : sensorLeader(fits, report.where.subsystem, options);
-    // A physical chain that leaves nothing beyond the noise-only reference cannot lose the lead to one of
-    // sensor errors, which must be complete where it is not (sensorsLead): that chain is not fitted.
-    if (sensor_first != nullptr && more.gap_after <= 0.0) {
-      report.notes.push_back("sensor errors before physics: the physical leader's chain leaves nothing beyond the "
-                             "noise-only reference (held-out gap " + briefNumber(more.gap_after) +
-                             "): the sensor errors' own chain, from " + sensor_first->effect->label() +
-                             ", was not fitted");
+    // A chain that could not take the lead whatever is fitted on top of its first sensor error is not
+    // fitted (sensorChainMayLead: the physical chain complete, or that error too weak to lead a chain).
+    std::string cannot_lead;
+    if (sensor_first != nullptr &&
+        !sensorChainMayLead(more, gap_before > 0.0 ? 1.0 - sensor_first->heldout_after / gap_before : 0.0, gap_before,
+                            options, &cannot_lead)) {
+      report.notes.push_back("sensor errors before physics: the sensor errors' own chain, from " +
+                             sensor_first->effect->label() + ", was not fitted: " + cannot_lead);
       sensor_first = nullptr;
     }
     if (sensor_first != nullptr) {

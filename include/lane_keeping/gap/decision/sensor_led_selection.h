@@ -37,6 +37,14 @@ double penalisedEvidence(const ForwardSelection& chain, double per_parameter);
 const CandidateFit* sensorLeader(const std::vector<CandidateFit>& fits, const std::string& where,
                                  const DiagnosisOptions& options);
 
+/// What sensorsLead asks that is known before the sensor-led chain is fitted: a physical chain that leaves a
+/// gap beyond the noise-only reference, and a first sensor error that removes, alone, `first_share` of the
+/// held-out gap of at least min_further_shrink (and min_effect_share). Where it does not hold no sensor chain
+/// can lead, whatever is fitted on top of its first error, so none is fitted (diagnosis.cpp: at 1 kHz such a
+/// chain took a third of lk_bench_gap's time). `why_not`, if given, gets the reason where it does not hold.
+bool sensorChainMayLead(const ForwardSelection& physical, double first_share, double gap_before,
+                        const DiagnosisOptions& options, std::string* why_not = nullptr);
+
 /// Whether the sensor-led chain `sensors` takes the lead from the physical-led chain `physical` (see above).
 /// `why` gets the sentence the verdict's reason adds.
 bool sensorsLead(const ForwardSelection& physical, const ForwardSelection& sensors, double gap_before,

@@ -48,25 +48,45 @@ const CandidateFit* sensorLeader(const std::vector<CandidateFit>& fits, const st
   return best;
 }
 
+bool sensorChainMayLead(const ForwardSelection& physical, double first_share, double gap_before,
+                        const DiagnosisOptions& options, std::string* why_not) {
+  auto no = [&](const std::string& reason) {
+    if (why_not != nullptr) *why_not = reason;
+    return false;
+  };
+  if (physical.effects.empty() || gap_before <= 0.0) return no("there is no physical chain to compare it with");
+  // The sensor error that leads must explain a part of the gap itself, as much as an effect added on top
+  // of others has to: a gyro scale removing 0.3 % followed by the physical leader is the physical chain
+  // with a free parameter in front (on the benchmark a steering friction was renamed so).
+  const double needed = std::max(options.min_further_shrink, options.min_effect_share);
+  if (first_share < needed) {
+    return no("its first sensor error alone removes " + percent(first_share) + " of the held-out gap (a leader of a chain "
+              "needs " + percent(needed) + ")");
+  }
+  // A complete explanation against an incomplete one (sensorsLead): where the physical chain leaves nothing
+  // beyond the noise-only reference, no sensor chain can be the more complete.
+  if (physical.gap_after <= 0.0) {
+    return no("the physical leader's chain leaves nothing beyond the noise-only reference (held-out gap " +
+              briefNumber(physical.gap_after) + ")");
+  }
+  return true;
+}
+
 bool sensorsLead(const ForwardSelection& physical, const ForwardSelection& sensors, double gap_before,
                  const DiagnosisOptions& options, std::string* why) {
   // One sensor error against a physical leader was compared already (winner_selection.h): a chain is
   // needed for anything new to be said.
-  if (sensors.effects.size() < 2 || physical.effects.empty() || gap_before <= 0.0) return false;
+  if (sensors.effects.size() < 2) return false;
+  if (!sensorChainMayLead(physical, sensors.effects.front().share, gap_before, options)) return false;
   const double m = options.min_evidence_per_parameter;
   const double shrink = 1.0 - sensors.gap_after / gap_before;
   if (shrink < options.min_shrink) return false;
-  // The sensor error that leads must explain a part of the gap itself, as much as an effect added on top
-  // of others has to: a gyro scale removing 0.3 % followed by the physical leader is the physical chain
-  // with a free parameter in front (on the benchmark a steering friction was renamed so).
-  const double first = sensors.effects.front().share;
-  if (first < std::max(options.min_further_shrink, options.min_effect_share)) return false;
   // A complete explanation against an incomplete one: the sensor chain must leave nothing beyond the
   // noise-only reference (net held-out gap 0) where the physical chain leaves some. Evidence alone favours
   // the longer chain (every added parameter removes some misfit of a mis-specified form, at a price of 50
   // against evidence in the millions): on the candidates family a steering scale with inertia or a 54 N m
   // friction on top (86 %, 70 %) outscored a true stiffness loss fitted alone (74 %, 67 %).
-  if (sensors.gap_after > 0.0 || physical.gap_after <= 0.0) return false;
+  if (sensors.gap_after > 0.0) return false;
   const double e_physical = penalisedEvidence(physical, m), e_sensors = penalisedEvidence(sensors, m);
   const double needed = m * static_cast<double>(physical.effects.front().params.size());
   if (e_physical - e_sensors >= needed) return false;
