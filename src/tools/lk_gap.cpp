@@ -63,8 +63,7 @@ void usage(std::ostream& out) {
          "             (default: hold each side out in turn and name an effect both folds name; docs/gap.md)\n"
          "  --candidate-forms-only   do not fit the leader's other form (LuGre kingpin friction for\n"
          "             steering_friction, a soft saturation for torque_limit, the contact patch's length\n"
-         "             for cornering_stiffness, a load that moves the centre of gravity for inertia;\n"
-         "             docs/gap.md, \"How far\")\n"
+         "             for cornering_stiffness; docs/gap.md, \"How far\")\n"
          "  --time-budget HOURS   refuse logs whose diagnosis is estimated to take longer (default 1; the\n"
          "             estimate is printed when it exceeds 10 minutes; docs/reliability.md)\n";
 }

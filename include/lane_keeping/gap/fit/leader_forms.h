@@ -1,12 +1,11 @@
 #pragma once
-/// The form that reproduces the effect (issue 47, kind 7). Four candidates stand for effects whose shape the
+/// The form that reproduces the effect (issue 47, kind 7). Three candidates stand for effects whose shape the
 /// project models better than the candidate does: steering_friction fits the smooth tanh law (Coulomb and
 /// viscous), where real kingpin friction sticks (LuGre, Deur eq 9: a bristle state that holds the wheel
 /// until the torque breaks it away), and torque_limit fits a hard clamp, where an actuator's saturation is
 /// often soft (M / (1 + (M / limit)^4)^(1/4)), and cornering_stiffness scales the tires' stiffness, where a
 /// patch of another length (inflation, load) changes the aligning stiffness the steering feels by another
-/// factor (C ~ k a^2, aligning ~ k a^3), and inertia scales mass and yaw inertia, where a load also moves
-/// the centre of gravity (the axles' shares of the weight, the tires' lever arms). On the open-loop replays the smooth forms remove the gap
+/// factor (C ~ k a^2, aligning ~ k a^3). On the open-loop replays the smooth forms remove the gap
 /// nearly as well (an 8 N m kingpin friction with plain stick plateaus: tanh's Coulomb 9.5 N m, 95 %
 /// held-out shrink), but the corrected closed loop shows no plateau (16 % closed-loop shrink), and the hard
 /// clamp cannot both cut an initial correction's torque and let the loop recover.
@@ -30,9 +29,6 @@
 ///                             (the patch's length: C ~ k a^2 and   explicit lugre.contact_length) times the scale;
 ///                             the aligning stiffness ~ k a^3,      its start: the square roots of the leader's
 ///                             where the candidate scales k)        stiffness scales
-///   inertia            load   yaw_scale, mass_scale, cg_forward    vehicle.yaw_inertia, .mass times the scales;
-///                             (m: G moved towards the front axle,  .cg_to_rear_axle + cg_forward (held a tenth
-///                             negative rearward)                   of the wheelbase inside either axle)
 #include <string>
 #include <vector>
 

@@ -67,28 +67,6 @@ std::vector<CandidateEffect> buildLeaderForms() {
     if (c.tire_rear.lugre.contact_length) *c.tire_rear.lugre.contact_length *= p[1];
   };
   list.push_back(patch);
-  // A car that is heavier or of another yaw inertia is a loaded car (passengers, luggage, a tank's fill), and a
-  // load sits somewhere: it moves the centre of gravity, and with it the axles' shares of the weight and the
-  // tires' lever arms (Beregi eq 3: a and d), which a mass and yaw-inertia scale leave where they were. The
-  // family's inertia truths move G by 2.5-5 cm with the load; fitted by the two scales alone the yaw inertia
-  // absorbs the shift (x1.42 for x1.3, x1.58 for x1.5) and what is left went to a "cornering stiffness"
-  // 3 % apart front and rear, or hid a gyro's scale beside it. G's shift forward, towards the front axle
-  // (negative: rearward), kept a tenth of the wheelbase inside either axle.
-  CandidateEffect load;
-  load.name = "inertia";
-  load.form = "load";
-  load.description = "the car carries a load: its yaw inertia, mass and centre of gravity differ";
-  load.params = {{"yaw_scale", "", 1.0, 0.2, 5.0, true},
-                 {"mass_scale", "", 1.0, 0.5, 2.0, true},
-                 {"cg_forward", "m", 0.0, -0.3, 0.3, false}};
-  load.subsystems = {"chassis", "steering"};
-  load.apply = [](const std::vector<double>& p, SimConfig& c) {
-    c.vehicle.yaw_inertia *= p[0];
-    c.vehicle.mass *= p[1];
-    const double l = c.vehicle.wheelbase;
-    c.vehicle.cg_to_rear_axle = std::clamp(c.vehicle.cg_to_rear_axle + p[2], 0.1 * l, 0.9 * l);
-  };
-  list.push_back(load);
   return list;
 }
 
