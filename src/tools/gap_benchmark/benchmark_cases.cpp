@@ -357,6 +357,13 @@ BenchmarkCase benchmarkCase(const std::string& id) {
   throw std::invalid_argument("no benchmark case '" + id + "' (the ids are those of lk_gap_benchmark: DIR/cases.json)");
 }
 
+BenchmarkCase independentCase(const std::string& id) {
+  for (const auto& c : independentCases()) {
+    if (c.id == id) return c;
+  }
+  throw std::invalid_argument("no independent case '" + id + "' (the ids are those of lk_gap_benchmark --family independent)");
+}
+
 BenchmarkCase heldoutRunOf(const BenchmarkCase& c) {
   BenchmarkCase h = c;
   h.id = c.id + ".heldout";

@@ -94,6 +94,8 @@ BenchmarkCase benchmarkCase(const std::string& id);
 /// different roads (a training and a held-out run). Then the groups (independent_groups.h: sensor
 /// errors alone and with a physical effect), each scored in its own table.
 std::vector<BenchmarkCase> independentCases();
+/// The independent family's case `id` (std::invalid_argument if there is none).
+BenchmarkCase independentCase(const std::string& id);
 /// The cases of a family: "candidates" (benchmarkCases()) or "independent".
 std::vector<BenchmarkCase> familyCases(const std::string& family);
 /// The nominal configuration the diagnosis of a case is given: its manoeuvre's with the case's set-up.

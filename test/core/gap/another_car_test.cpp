@@ -13,13 +13,6 @@
 namespace lane_keeping {
 namespace {
 
-BenchmarkCase independentCase(const std::string& id) {
-  for (const BenchmarkCase& c : independentCases()) {
-    if (c.id == id) return c;
-  }
-  throw std::runtime_error("the independent family has no case " + id);
-}
-
 GapReport diagnosed(const std::string& id) {
   const BenchmarkCase c = independentCase(id);
   EXPECT_EQ(c.group, "another car");

@@ -10,20 +10,12 @@
 #include <string>
 
 #include "gap_benchmark/benchmark_cases.h"
-#include "gap_benchmark/independent_groups.h"
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/diagnosis_data.h"
 
 namespace lane_keeping {
 namespace diagnosis {
 namespace {
-
-BenchmarkCase groupCase(const std::string& id) {
-  for (const BenchmarkCase& c : independentGroupCases()) {
-    if (c.id == id) return c;
-  }
-  throw std::invalid_argument("no group case " + id);
-}
 
 RunData runOf(const BenchmarkCase& c) {
   const GapLog log = generateBenchmarkLog(c, SensorNoise{}, c.log_rate > 0.0 ? c.log_rate : 500.0);  // 0: the default
@@ -43,10 +35,10 @@ double timeWithin(const std::vector<Dataset>& sets, double t0, double t1) {
 
 TEST(StartOfALog, ATransientIsFoundWhereTheStartHoldsTheExcitationOnly) {
   // A 2 m offset corrected on a straight road: the first 2 s hold about half the run's excitation.
-  const RunData offset = runOf(groupCase("none-start-2m-straight-500Hz"));
+  const RunData offset = runOf(independentCase("none-start-2m-straight-500Hz"));
   EXPECT_TRUE(startsWithTransient(*offset.log, *offset.config));
   // A sinusoidal road from the lane's centre (the pair's training run): its excitation is spread out.
-  const RunData sinusoid = runOf(groupCase("none-start-pair-sinusoid-straight"));
+  const RunData sinusoid = runOf(independentCase("none-start-pair-sinusoid-straight"));
   EXPECT_FALSE(startsWithTransient(*sinusoid.log, *sinusoid.config));
   // A log no longer than the window has no "start" apart from its whole.
   GapLog short_log = offset.log->log();
@@ -62,8 +54,8 @@ TEST(StartOfALog, ATransientIsFoundWhereTheStartHoldsTheExcitationOnly) {
 
 TEST(StartOfALog, ItsSliversLieOnBothSidesFromTheLead) {
   const DiagnosisOptions options;
-  const RunData offset = runOf(groupCase("none-start-2m-straight-500Hz"));
-  const RunData sinusoid = runOf(groupCase("none-start-pair-sinusoid-straight"));
+  const RunData offset = runOf(independentCase("none-start-2m-straight-500Hz"));
+  const RunData sinusoid = runOf(independentCase("none-start-pair-sinusoid-straight"));
   const double t0 = offset.log->start();
   // One run: the first 2 s alternate in 0.25 s slivers from the lead (0.1 s), training first; then the
   // balanced blocks.
@@ -99,7 +91,7 @@ TEST(StartOfALog, ATorqueLimitHitOnlyByTheInitialCorrectionIsNamedAndTheCorrecti
   options.effects = {"torque_limit", "steering_friction", "road_friction"};
   options.closed_loop = false;
   for (const std::string id : {"torque_limit-start-minus2.5m-straight-100Hz", "none-start-minus2.5m-straight-100Hz"}) {
-    const BenchmarkCase c = groupCase(id);
+    const BenchmarkCase c = independentCase(id);
     const GapLog log = generateBenchmarkLog(c, SensorNoise{}, c.log_rate);
     const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {log}, {}, options);
     std::printf("[ measured ] %s: %s, shrink %.3f (%s)\n", id.c_str(), r.verdict.effect.c_str(), r.verdict.shrink,

@@ -143,11 +143,7 @@ TEST(FoldPooling, AnEffectStandsOnlyWhereBothFoldsNameIt) {
 }
 
 TEST(FoldPooling, TheSecondFoldHoldsOutWhatTheFirstTrainedOn) {
-  BenchmarkCase c;
-  for (const BenchmarkCase& k : independentCases()) {
-    if (k.id == "sensor-yaw_rate_offset-lane_change") c = k;
-  }
-  ASSERT_FALSE(c.id.empty()) << "the independent family's yaw-rate offset log is gone";
+  const BenchmarkCase c = independentCase("sensor-yaw_rate_offset-lane_change");
   const SimConfig nominal = benchmarkCaseNominal(c);
   const std::vector<RunData> runs = prepareRuns({gapRun(generateBenchmarkLog(c, SensorNoise{}, 500.0), nominal)});
   DiagnosisOptions second;
@@ -175,11 +171,7 @@ TEST(FoldPooling, AYawRateOffsetTheHeldOutSideAloneMissesIsNamedByBothFolds) {
   // once held out; both sides together are (p = 0.05). One fold said "nothing to explain"; both folds fit a
   // bias near 0.004 rad/s on one side that removes the other side's gap. Three candidates, no closed loop:
   // the folds' wiring is tested, not the ranking.
-  BenchmarkCase c;
-  for (const BenchmarkCase& k : independentCases()) {
-    if (k.id == "sensor-yaw_rate_offset-lane_change") c = k;
-  }
-  ASSERT_FALSE(c.id.empty());
+  const BenchmarkCase c = independentCase("sensor-yaw_rate_offset-lane_change");
   const GapLog log = generateBenchmarkLog(c, SensorNoise{}, 500.0);
   DiagnosisOptions options;
   options.effects = {"sensor_offset", "cornering_stiffness", "inertia"};

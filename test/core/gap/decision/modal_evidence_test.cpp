@@ -215,11 +215,7 @@ TEST(ModalEvidence, TheMarginLogIsNamedOnItAndItsTwinIsNot) {
   options.effects = {"actuation_delay", "steering_friction", "inertia"};
   options.closed_loop = false;
   for (const std::string id : {"actuation_delay-margin-1.7ms-p2000-straight1m-100Hz", "none-margin-p2000-straight1m-100Hz"}) {
-    BenchmarkCase c;
-    for (const BenchmarkCase& k : independentCases()) {
-      if (k.id == id) c = k;
-    }
-    ASSERT_EQ(c.id, id);
+    const BenchmarkCase c = independentCase(id);
     const GapLog log = generateBenchmarkLog(c, SensorNoise{}, c.log_rate);
     const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {log}, {}, options);
     std::printf("[ measured ] %s: %s (%s): %s\n", id.c_str(), r.verdict.effect.c_str(), r.verdict.basis.c_str(),
