@@ -61,9 +61,9 @@ void usage(std::ostream& out) {
          "             training data, finish on all of it (default 3; 1: search all the data; docs/gap.md)\n"
          "  --one-fold   where the held-out test alone misses a gap both sides together show, say so and stop\n"
          "             (default: hold each side out in turn and name an effect both folds name; docs/gap.md)\n"
-         "  --candidate-forms-only   do not fit the leader's other form (LuGre kingpin friction for\n"
-         "             steering_friction, a soft saturation for torque_limit, the contact patch's length\n"
-         "             for cornering_stiffness; docs/gap.md, \"How far\")\n"
+         "  --candidate-forms-only   do not fit the other forms of the leader and of further effects\n"
+         "             (LuGre kingpin friction for steering_friction, a soft saturation for torque_limit,\n"
+         "             the contact patch's length for cornering_stiffness; docs/gap.md, \"How far\")\n"
          "  --time-budget HOURS   refuse logs whose diagnosis is estimated to take longer (default 1; the\n"
          "             estimate is printed when it exceeds 10 minutes; docs/reliability.md)\n";
 }

@@ -55,7 +55,8 @@ def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threa
     effects:  restrict the candidates (lk_gap --effects); threads, noise_reference_draws, coarse_fit_stride:
               lk_gap's options of those names
     two_folds: hold each side out in turn where the held-out side alone misses the gap (False: lk_gap --one-fold)
-    leader_forms: fit the leader's LuGre, soft or contact-length form (False: lk_gap --candidate-forms-only)
+    leader_forms: fit the LuGre, soft or contact-length form of the leader and of further effects
+                  (False: lk_gap --candidate-forms-only)
     progress: a callable given each progress message (lk_gap prints them on stderr)
     series:   also return the plots' series (residuals.csv, spectrum.csv, overlay.csv) as DataFrames
 

@@ -15,8 +15,9 @@
 /// data better — by at least min_further_shrink of what the leader leaves there, as a further effect must —
 /// *and* leaves a smaller held-out gap (a form with a parameter more must earn it), and whose
 /// closed loop stays within the logged bounds, stands for the effect in the verdict, its effects and how
-/// far. Only for the leader: fitting them for every log would add two fits to every diagnosis (one with
-/// LuGre's stiff state) to change what only a leader's closed loop shows.
+/// far. Not in the first round: fitting them for every log would add three fits to every diagnosis (one
+/// with LuGre's stiff state) to change what only a leader's closed loop shows. Further effects
+/// (forward_selection.h) are fitted in both forms, where what is left lies in their subsystems.
 ///
 ///   effect             form   parameters                          config keys it changes
 ///   steering_friction  lugre  coulomb (N m), viscous (N m s/rad),  steering.friction_model = lugre,

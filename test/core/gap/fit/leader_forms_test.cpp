@@ -2,6 +2,7 @@
 // saturation, fitted for the verdict's leader, stand for it where they fit better.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
@@ -78,11 +79,7 @@ TEST(LeaderForms, ASoftLimitIsFittedSoftAndItsClosedLoopFollowsTheLog) {
   // the correction's torque too sharply; the soft form fits the training data better and its closed loop
   // follows the logged run. Measured in the benchmark: closed-loop gap net of noise 0.545 -> 0.115 (hard),
   // -> 0.021 (soft).
-  BenchmarkCase c;
-  for (const BenchmarkCase& k : independentCases()) {
-    if (k.id == "torque_limit-start-minus2.5m-straight-100Hz") c = k;
-  }
-  ASSERT_FALSE(c.id.empty()) << "the start group's 100 Hz torque limit is gone";
+  const BenchmarkCase c = independentCase("torque_limit-start-minus2.5m-straight-100Hz");
   const GapLog log = generateBenchmarkLog(c, SensorNoise{}, 500.0);
   DiagnosisOptions options;
   options.effects = {"torque_limit", "steering_friction"};
@@ -128,11 +125,7 @@ TEST(LeaderForms, APatchOfAnotherLengthIsFittedAsOneAndASofterTreadIsNot) {
   EXPECT_LT(with.how_far.net_after, 0.3 * without.how_far.net_after);
 
   options.leader_forms = true;
-  BenchmarkCase tread;
-  for (const BenchmarkCase& k : independentCases()) {
-    if (k.id == "cornering_stiffness-pair-sinusoid-lane_change") tread = k;
-  }
-  ASSERT_FALSE(tread.id.empty()) << "the independent family's cornering stiffness pair is gone";
+  const BenchmarkCase tread = independentCase("cornering_stiffness-pair-sinusoid-lane_change");
   const BenchmarkCase other = heldoutRunOf(tread);
   const GapRun training = gapRun(generateBenchmarkLog(tread, SensorNoise{}, 100.0), benchmarkCaseNominal(tread));
   const GapRun heldout = gapRun(generateBenchmarkLog(other, SensorNoise{}, 100.0), benchmarkCaseNominal(other));
@@ -141,6 +134,32 @@ TEST(LeaderForms, APatchOfAnotherLengthIsFittedAsOneAndASofterTreadIsNot) {
   EXPECT_EQ(scaled.verdict.form, "") << scaled.verdict.reason;
   ASSERT_FALSE(scaled.verdict.effects.empty());
   EXPECT_NEAR(scaled.verdict.effects[0].params.at("front_scale"), 0.7, 0.03);
+}
+
+// A further effect in its form (forward_selection.cpp): the independent family's steering-angle offset (0.35 deg)
+// with LuGre kingpin friction (T_c 3, T_s 4.5 N m, sigma0 2e4) at p = 1250. The offset leads; on top of it the
+// tanh law removes nothing of what is left and a column compliance 23 % (not enough), the LuGre form nearly all.
+TEST(LeaderForms, AFurtherEffectIsFittedInItsFormToo) {
+  const BenchmarkCase pair = independentCase("sensor-steering_offset+steering_friction-lane_change");
+  DiagnosisOptions options;
+  options.effects = {"sensor_offset", "steering_friction", "steering_compliance", "torque_limit"};
+  const GapLog log = generateBenchmarkLog(pair, SensorNoise{}, 500.0);  // the family's rate (at 100 Hz it is not added)
+  const GapReport with = diagnoseGap(benchmarkCaseNominal(pair), {log}, {}, options);
+  options.leader_forms = false;
+  const GapReport without = diagnoseGap(benchmarkCaseNominal(pair), {log}, {}, options);
+  std::printf("[ measured ] offset + friction: %zu effect(s) named without the forms (combined gap %.4g), %zu with "
+              "(%.4g)\n", without.verdict.effects.size(), without.verdict.combined_gap_after, with.verdict.effects.size(),
+              with.verdict.combined_gap_after);
+  ASSERT_EQ(with.verdict.effect, "sensor_offset") << with.verdict.reason;
+  EXPECT_EQ(with.verdict.form, "steering_angle");
+  ASSERT_EQ(with.verdict.effects.size(), 2u);
+  EXPECT_NEAR(with.verdict.effects[0].params.at("bias"), 0.35 * M_PI / 180.0, 0.001);
+  EXPECT_EQ(with.verdict.effects[1].effect, "steering_friction");
+  EXPECT_EQ(with.verdict.effects[1].form, "lugre");
+  EXPECT_NEAR(with.verdict.effects[1].params.at("coulomb"), 3.0, 0.5);
+  EXPECT_EQ(with.verdict.effects[1].config.at("steering.friction_model"), "lugre");
+  EXPECT_LT(with.verdict.combined_gap_after, 0.3 * without.verdict.combined_gap_after);
+  for (const VerdictEffect& e : without.verdict.effects) EXPECT_NE(e.form, "lugre");
 }
 
 }  // namespace
