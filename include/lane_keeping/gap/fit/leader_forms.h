@@ -16,8 +16,9 @@
 /// *and* leaves a smaller held-out gap (a form with a parameter more must earn it), and whose
 /// closed loop stays within the logged bounds, stands for the effect in the verdict, its effects and how
 /// far. Not in the first round: fitting them for every log would add three fits to every diagnosis (one
-/// with LuGre's stiff state) to change what only a leader's closed loop shows. Further effects
-/// (forward_selection.h) are fitted in both forms, where what is left lies in their subsystems.
+/// with LuGre's stiff state) to change what only a leader's closed loop shows. A further effect
+/// (forward_selection.cpp) is fitted in its LuGre or soft form too, beside its candidate, and the form takes
+/// the candidate's place by the same rule (not the contact patch's length: docs/gap.md).
 ///
 ///   effect             form   parameters                          config keys it changes
 ///   steering_friction  lugre  coulomb (N m), viscous (N m s/rad),  steering.friction_model = lugre,
@@ -42,6 +43,9 @@ namespace diagnosis {
 
 /// The forms above, in that order.
 const std::vector<CandidateEffect>& leaderForms();
+
+/// Whether `effect` is one of leaderForms() (not a candidate's own form).
+bool isLeaderForm(const CandidateEffect& effect);
 
 /// The leader's effect in each of its leader forms, fitted from the leader's parameters on the same data
 /// and scored; returns the best of them (by training gap) if it beats the leader's training gap by

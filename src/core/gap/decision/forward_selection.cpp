@@ -160,10 +160,15 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
     // LuGre kingpin friction on top: the tanh law on top of the offset removed nothing, the column compliance
     // 23 %, the LuGre form 92 % of what the offset left, its Coulomb 3.13 N m and sigma0 1.8e4 for 3 and 2e4).
     // (Beside the kept candidates only: three more fits a round, one with LuGre's stiff bristle, where nothing
-    // of their effect is left was time spent on every log.)
+    // of their effect is left was time spent on every log.) Not the contact patch's length: on top of other
+    // effects it named nothing right and changed two diagnoses for the worse — a spurious second effect on a
+    // tire-lag log, and the race car's sensor chain (its steering offset, then the slicks' stiffness and the
+    // steering scale, complete), which with the patch on top stopped at two effects and 16 % of the gap, so
+    // that a side force led in place of the offset measured on the straights.
     if (options.leader_forms) {
       const std::vector<const CandidateEffect*> kept = round;
       for (const CandidateEffect& form : leaderForms()) {
+        if (form.form == "contact_length") continue;
         if (std::any_of(kept.begin(), kept.end(), [&](const CandidateEffect* c) { return c->name == form.name; })) {
           round.push_back(&form);
         }
@@ -174,6 +179,21 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
     }
     std::vector<CandidateFit> fits(round.size());
     parallelFor(round.size(), options.threads, [&](std::size_t k) { fits[k] = fitCandidate(*round[k], next, options); });
+    // A leader form takes its candidate's place only by the rule it stands by for a leader (leader_forms.h):
+    // better on the training data by min_further_shrink of what the candidate leaves there, and on the held-out
+    // data, as a form with a parameter more must earn it (the candidates' own forms are compared by the
+    // training gap alone).
+    fits.erase(std::remove_if(fits.begin(), fits.end(),
+                              [&](const CandidateFit& form) {
+                                if (!isLeaderForm(*form.effect)) return false;
+                                for (const CandidateFit& own : fits) {
+                                  if (own.effect->name != form.effect->name || isLeaderForm(*own.effect) || !own.ok) continue;
+                                  return !(form.ok && form.train_after < (1.0 - options.min_further_shrink) * own.train_after &&
+                                           form.heldout_after < own.heldout_after);
+                                }
+                                return !form.ok;
+                              }),
+               fits.end());
     std::vector<std::string> form_notes;
     keepBestForms(&fits, &form_notes);
     const double base_gap = gapOf(base_held.scores, {});

@@ -88,6 +88,13 @@ const std::vector<CandidateEffect>& leaderForms() {
   return list;
 }
 
+bool isLeaderForm(const CandidateEffect& effect) {
+  for (const CandidateEffect& form : leaderForms()) {
+    if (&form == &effect || (form.name == effect.name && form.form == effect.form)) return true;
+  }
+  return false;
+}
+
 CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& context, const DiagnosisOptions& options,
                              std::vector<std::string>* notes) {
   CandidateFit best;
