@@ -340,9 +340,7 @@ class SingleTrackModel {
     if (lugre_friction_) {
       // LuGre point friction (Deur eqs 6 and 9) on the steering rate.
       const T& z = x[next];
-      const double tc = p.coulomb_friction, ts = std::max(p.breakaway_friction, p.coulomb_friction);
-      const T ratio = rate / p.friction_velocity;
-      const T g = tc + (ts - tc) * exp(-ratio * ratio);
+      const T g = p.lugreLevel(rate);
       const T z_dot = rate - p.friction_stiffness * abs(rate) * z / g;
       x_dot[next] = z_dot;
       friction = p.friction_stiffness * z + p.friction_damping * z_dot + p.viscous_friction * rate;

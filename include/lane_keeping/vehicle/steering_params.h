@@ -11,6 +11,8 @@
 ///    coupled to the wheel by a torsional spring k_c and damper c_c:
 ///      J_c theta'' = M - k_c (theta - delta) - c_c (theta' - delta'),  f3 = M_F + k_c (theta - delta)
 ///      + c_c (theta' - delta') - T_f.   (column yaw coupling with the body neglected: J_c << J_G)
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -44,6 +46,15 @@ struct SteeringParams {
   bool hasFriction() const { return coulomb_friction > 0.0 || breakaway_friction > 0.0 || viscous_friction > 0.0; }
   bool lugreFriction() const { return friction_model == "lugre" && (coulomb_friction > 0.0 || breakaway_friction > 0.0); }
   bool compliant() const { return column_stiffness > 0.0; }
+  /// The LuGre sliding level g(w) = T_c + (T_s - T_c) exp(-(w / w_s)^2) at the steering rate w (Deur eq 6; T_s
+  /// taken at least T_c): the model, and the replays that step its bristle state, read it from here.
+  template <typename T>
+  T lugreLevel(const T& rate) const {
+    using std::exp;
+    const double tc = coulomb_friction, ts = std::max(breakaway_friction, coulomb_friction);
+    const T ratio = rate / friction_velocity;
+    return tc + (ts - tc) * exp(-ratio * ratio);
+  }
   bool columnSensor() const { return angle_sensor == "column"; }
   /// Extra states: column angle and rate (compliant), LuGre friction state.
   int stateSize() const { return (compliant() ? 2 : 0) + (lugreFriction() ? 1 : 0); }

@@ -47,6 +47,11 @@ const std::vector<CandidateEffect>& leaderForms();
 /// Whether `effect` is one of leaderForms() (not a candidate's own form).
 bool isLeaderForm(const CandidateEffect& effect);
 
+/// Whether the fit of a leader form `form` stands for the effect in place of the candidate's own fit `own`:
+/// better on the training data by min_further_shrink of what `own` leaves there, better held out, and its
+/// closed loop not found outside the logged bounds.
+bool formStandsFor(const CandidateFit& form, const CandidateFit& own, const DiagnosisOptions& options);
+
 /// The leader's effect in each of its leader forms, fitted from the leader's parameters on the same data
 /// and scored; returns the best of them (by training gap) if it beats the leader's training gap by
 /// min_further_shrink and its held-out gap, and its closed loop stays within the logged bounds (where the

@@ -188,8 +188,7 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
                                 if (!isLeaderForm(*form.effect)) return false;
                                 for (const CandidateFit& own : fits) {
                                   if (own.effect->name != form.effect->name || isLeaderForm(*own.effect) || !own.ok) continue;
-                                  return !(form.ok && form.train_after < (1.0 - options.min_further_shrink) * own.train_after &&
-                                           form.heldout_after < own.heldout_after);
+                                  return !formStandsFor(form, own, options);
                                 }
                                 return !form.ok;
                               }),

@@ -95,6 +95,11 @@ bool isLeaderForm(const CandidateEffect& effect) {
   return false;
 }
 
+bool formStandsFor(const CandidateFit& form, const CandidateFit& own, const DiagnosisOptions& options) {
+  return form.ok && form.unbounded_on.empty() && form.train_after < (1.0 - options.min_further_shrink) * own.train_after &&
+         form.heldout_after < own.heldout_after;
+}
+
 CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& context, const DiagnosisOptions& options,
                              std::vector<std::string>* notes) {
   CandidateFit best;
@@ -126,8 +131,7 @@ CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& conte
     // Better on the training data by what a further effect must remove of what is left (min_further_shrink:
     // forms the data barely tell apart keep the candidate's own, 0.1813 against 0.1811 on a limit whose soft
     // closed loop was the worse), and on the held-out data too: a form with a parameter more must earn it.
-    if (fit.ok && fit.unbounded_on.empty() && fit.train_after < (1.0 - options.min_further_shrink) * leader.train_after &&
-        fit.heldout_after < leader.heldout_after && (!best.ok || fit.train_after < best.train_after)) {
+    if (formStandsFor(fit, leader, options) && (!best.ok || fit.train_after < best.train_after)) {
       best = fit;
     }
   }

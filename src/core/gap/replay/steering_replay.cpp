@@ -42,14 +42,11 @@ double staticColumnTwist(const SteeringParams& sp, double torque) {
 std::vector<double> kingpinFrictionStates(const SteeringParams& sp, const LogSignals& log) {
   const auto& times = log.times();
   const auto& rate = log.samples(LogSignals::kDeltaRate);
-  const double tc = sp.coulomb_friction, ts = std::max(sp.breakaway_friction, sp.coulomb_friction);
   std::vector<double> z(times.size(), 0.0);
   for (std::size_t i = 1; i < times.size(); ++i) {
     const double w = 0.5 * (rate[i - 1] + rate[i]);
     const double h = times[i] - times[i - 1];
-    const double ratio = w / sp.friction_velocity;
-    const double g = tc + (ts - tc) * std::exp(-ratio * ratio);
-    const double k = sp.friction_stiffness * std::fabs(w) / g;
+    const double k = sp.friction_stiffness * std::fabs(w) / sp.lugreLevel(w);
     if (k * h < 1e-12) {
       z[i] = z[i - 1] + w * h;
       continue;
@@ -130,11 +127,7 @@ SubsystemReplay replaySteering(const SimConfig& config, const LogSignals& log, c
   const int bristle = steer0 + (friction_params.compliant() ? 2 : 0);  // z in the model's state
   double slope_step = 0.0;  // the step h of the run in progress (simulateWithStep)
   auto slidingSlope = [&](double rate) {
-    const SteeringParams& sp = friction_params;
-    const double tc = sp.coulomb_friction, ts = std::max(sp.breakaway_friction, sp.coulomb_friction);
-    const double ratio = rate / sp.friction_velocity;
-    const double g = tc + (ts - tc) * std::exp(-ratio * ratio);
-    const double a = sp.friction_stiffness * std::fabs(rate) / g;
+    const double a = friction_params.friction_stiffness * std::fabs(rate) / friction_params.lugreLevel(rate);
     if (!(a * slope_step > 2.0)) return;
     full_dot[bristle] = (rate / a - full[bristle]) * -std::expm1(-a * slope_step) / slope_step;
   };
