@@ -470,6 +470,21 @@ std::vector<double> warmStartFit(const CandidateObjective& objective, std::vecto
   return polish(objective, theta, search::kFinalPolishSteps);
 }
 
+bool pinnedAtBound(const CandidateEffect& effect, const std::vector<double>& theta, const std::vector<double>& sigma) {
+  for (std::size_t i = 0; i < theta.size() && i < effect.params.size(); ++i) {
+    const auto& p = effect.params[i];
+    const double span = p.log_scale ? std::log(p.upper / p.lower) : (p.upper - p.lower);
+    const double from_lower = p.log_scale ? std::log(theta[i] / p.lower) : theta[i] - p.lower;
+    const double from_upper = p.log_scale ? std::log(p.upper / theta[i]) : p.upper - theta[i];
+    const double distance = std::min(from_lower, from_upper);
+    if (!(distance < 0.01 * span)) continue;
+    // The standard error on the axis the distance is measured on (d log theta = d theta / theta).
+    const double s = i < sigma.size() ? (p.log_scale ? sigma[i] / std::fabs(theta[i]) : sigma[i]) : kNaN;
+    if (!std::isfinite(s) || distance < 3.0 * s || distance < 0.001 * span) return true;
+  }
+  return false;
+}
+
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
               const DiagnosisOptions& options, CandidateFit* out, int threads) {
   CandidateFit& fit = *out;
@@ -480,14 +495,6 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
   fit.theta = theta;
   fit.corrected = objective.configFor(theta);
   fit.change = objective.changeFor(theta);
-  fit.at_bound = false;
-  for (std::size_t i = 0; i < theta.size(); ++i) {
-    const auto& p = effect.params[i];
-    const double span = p.log_scale ? std::log(p.upper / p.lower) : (p.upper - p.lower);
-    const double from_lower = p.log_scale ? std::log(theta[i] / p.lower) : theta[i] - p.lower;
-    const double from_upper = p.log_scale ? std::log(p.upper / theta[i]) : p.upper - theta[i];
-    if (std::min(from_lower, from_upper) < 0.01 * span) fit.at_bound = true;
-  }
 
   // The replays the scores need are independent of one another: the training data at theta (the
   // training scores, and the residuals the uncertainty needs), the held-out data at theta, and the
@@ -541,6 +548,8 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
       for (std::size_t j = 0; j < p; ++j) fit.sigma[j] = std::sqrt(std::max(0.0, cov(j, j)));
     }
   }
+
+  fit.at_bound = pinnedAtBound(effect, theta, fit.sigma);
 
   // Scores: training and held-out, all subsystems (unchanged ones keep their nominal scores).
   fit.train_before = combinedGap([&] {

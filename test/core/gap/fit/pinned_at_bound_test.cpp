@@ -1,0 +1,70 @@
+// A fit pinned at a bound of its range (pinnedAtBound, candidate_fit.h) was stretching to imitate something
+// else and ranks below every unpinned fit. Near a bound is not pinned where the data place the fit clearly off
+// it: a steering-angle latency of a few milliseconds lies within 1 % of its 0-0.3 s range (a CAN channel
+// logged 0.2 s late is what the range is for), yet tens of standard errors from a latency of nil.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "gap_benchmark/benchmark_cases.h"
+#include "lane_keeping/gap/diagnosis.h"
+#include "lane_keeping/gap/fit/candidate_effects.h"
+#include "lane_keeping/gap/fit/candidate_fit.h"
+
+namespace lane_keeping {
+namespace {
+
+const CandidateEffect& steeringLatency() {
+  for (const CandidateEffect& e : candidateEffects())
+    if (e.name == "sensor_latency" && e.form == "steering_angle") return e;
+  throw std::logic_error("no sensor_latency (steering_angle) candidate");
+}
+
+TEST(PinnedAtBound, AFitTheDataPlaceOffItsBoundIsNotPinnedHoweverWideTheRange) {
+  const CandidateEffect& latency = steeringLatency();
+  ASSERT_DOUBLE_EQ(latency.params.at(0).lower, 0.0);
+  ASSERT_DOUBLE_EQ(latency.params.at(0).upper, 0.3);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  // 2.8 ms +- 0.068 ms (the quantised-bus log below): within 1 % of the range (3 ms), 41 sigma off nil.
+  EXPECT_FALSE(diagnosis::pinnedAtBound(latency, {0.0028}, {6.8e-5}));
+  // The same fit with an uncertainty that reaches the bound, or none known: pinned, as every fit within 1 %.
+  EXPECT_TRUE(diagnosis::pinnedAtBound(latency, {0.0028}, {1.0e-3}));
+  EXPECT_TRUE(diagnosis::pinnedAtBound(latency, {0.0028}, {nan}));
+  EXPECT_TRUE(diagnosis::pinnedAtBound(latency, {0.0028}, {}));
+  // Within 0.1 % of the range a fit is pinned whatever its sigma (the search stopped at the bound; a
+  // Gauss-Newton sigma is a lower bound there).
+  EXPECT_TRUE(diagnosis::pinnedAtBound(latency, {0.0002}, {1.0e-6}));
+  // Beyond 1 % of the range nothing is pinned, whatever the sigma.
+  EXPECT_FALSE(diagnosis::pinnedAtBound(latency, {0.01}, {0.05}));
+  // A log-scale parameter: the distance and its sigma on the log axis (d log theta = sigma / theta). Road
+  // friction's 0.05-3 range spans log 60 = 4.09; a scale of 0.051 lies 0.0198 from its lower bound (0.5 %).
+  const CandidateEffect& friction = candidateEffect("road_friction");
+  ASSERT_TRUE(friction.params.at(0).log_scale);
+  EXPECT_FALSE(diagnosis::pinnedAtBound(friction, {0.051}, {1.0e-4}));  // 0.002 on the log axis: 10 sigma
+  EXPECT_TRUE(diagnosis::pinnedAtBound(friction, {0.051}, {1.0e-3}));   // 0.0196: 1 sigma
+  // Upper bounds count as lower ones do.
+  EXPECT_FALSE(diagnosis::pinnedAtBound(latency, {0.2975}, {1.0e-4}));
+  EXPECT_TRUE(diagnosis::pinnedAtBound(latency, {0.2975}, {1.0e-3}));
+}
+
+// The independent family's 2.5 ms steering-angle latency on a quantised bus: its latency fit (2.8 ms, 100 % of the
+// held-out gap) was flagged pinned, and an actuation delay that imitates it (75 %) was named.
+TEST(PinnedAtBound, AFewMillisecondsOfSteeringAngleLatencyOnABusAreNamedNotAnActuationDelay) {
+  const BenchmarkCase c = independentCase("sensor-steering_latency-lane_change-bus_quantised");
+  const GapLog log = generateBenchmarkLog(c, SensorNoise{}, c.log_rate > 0.0 ? c.log_rate : 500.0);
+  const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {log}, {}, DiagnosisOptions{});
+  std::printf("[ measured ] verdict %s (%s), shrink %.3f: %s\n", r.verdict.effect.c_str(), r.verdict.form.c_str(),
+              r.verdict.shrink, r.verdict.reason.c_str());
+  ASSERT_EQ(r.verdict.effect, "sensor_latency") << r.verdict.reason;
+  EXPECT_EQ(r.verdict.form, "steering_angle");
+  ASSERT_FALSE(r.verdict.effects.empty());
+  EXPECT_NEAR(r.verdict.effects.front().params.at("latency"), 0.0025, 0.0005);
+  EXPECT_GT(r.verdict.shrink, 0.9);
+}
+
+}  // namespace
+}  // namespace lane_keeping
