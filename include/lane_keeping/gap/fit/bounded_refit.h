@@ -40,7 +40,8 @@ void noteNotRefitted(double bar, CandidateFit* fit);
 /// logged bounds is contradicted by the logs; fitting it again under those bounds costs a closed-loop run
 /// per point visited (40-60 s on a 60 s log). It is worth that only if the refit could become the
 /// verdict: the refit fits the training data no better than the unconstrained fit, so a candidate whose
-/// unconstrained held-out gap already loses to the best qualifying bounded candidate (or misses the
+/// unconstrained held-out gap already loses to the best qualifying bounded candidate (is larger: at a tie,
+/// both nets at 0, the evidence decides) (or misses the
 /// min_shrink needed), or that does not change the subsystem carrying the gap (`where_subsystem`), or a
 /// gap the detection test does not confirm (`detected` false), keeps its unconstrained fit marked unbounded (a note says why),
 /// and cannot be the verdict. Returns the wall time of each refit, named for the report.
