@@ -48,7 +48,8 @@ void addSensorNoise(GapLog& log, const SensorNoise& noise, unsigned seed);
 /// character (estimateCharacter) where it is more than white noise. `nominal`, if given, is the noise-free
 /// nominal run over the log's span (nominalReferenceLog): its columns, at the log's times, take the
 /// nominal motion out of a characterised channel's level and colour. Give it only the columns the model
-/// simulates (not ones copied or smoothed from the log itself).
+/// simulates (not ones copied or smoothed from the log itself). The colour of a continuous channel is read on
+/// the body's sensors only (yaw rate, lateral acceleration; sensor_character.h).
 SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal = nullptr);
 
 /// The white level of one channel as estimatedNoise reads it (without the character), within `stretches`

@@ -21,8 +21,10 @@
 /// autocorrelation of second differences is -(4 - 3 rho + rho^2) / (2 (3 - rho)), -2/3 for white noise,
 /// and their variance sigma^2 (6 - 8 rho + 2 rho^2); the rounding onto a grid adds 6 q^2 / 12 and
 /// -4 q^2 / 12, taken out before the colour is read. The colour is kept if |rho| >= 0.3 on a quantised
-/// or held channel (on a continuous one a fast signal, a steering loop ringing at 120 Hz in a 1 kHz log,
-/// reads as colour: such channels stay white). A quantised channel's level is found by simulation (the
+/// or held channel, or on a continuous one whose fast content is noise: a body sensor (yaw rate, lateral
+/// acceleration: the body filters the steering loop's fast content out of them). On a continuous channel of
+/// the steering loop a fast signal (the loop ringing at 120 Hz in a 1 kHz log) reads as colour: such
+/// channels stay white. A quantised channel's level is found by simulation (the
 /// sigma whose noise, rounded, gives the observed variance), as the rounding is not independent of the
 /// noise where the step is not well below it.
 #include <random>
@@ -50,8 +52,10 @@ struct ChannelCharacter {
 /// (500 Hz, torque held 5 rows, 0.5 N m steps, AR 0.5, sigma 0.2 N m): the readings alone gave the torque
 /// sigma 33.7 N m and AR 0.9 (the PID torque's own motion between 100 Hz readings), the draws' excess
 /// median 13.7 against the log's 0.04, and every effect on such a bus came out "nothing to explain".
+/// `colour_where_continuous`: the channel's fast content is its noise's (a body sensor: yaw rate, lateral
+/// acceleration), so its colour is read also where it is continuous (see above).
 ChannelCharacter estimateCharacter(const std::vector<double>& values, double white_sigma,
-                                   const std::vector<double>& nominal = {});
+                                   const std::vector<double>& nominal = {}, bool colour_where_continuous = false);
 
 /// `truth` with noise of character `c` added: AR(1) noise at sigma (one unit normal per row from `unit`,
 /// consumed as the white path consumes them, so a plain character adds the same values as white noise of

@@ -68,7 +68,9 @@ SensorNoise estimatedNoise(const LogSignals& log, const GapLog* nominal) {
     const std::vector<double> model =
         nominal && nominal->column(column) ? linearAt(nominal->t, *nominal->column(column), log.times())
                                            : std::vector<double>{};
-    const ChannelCharacter c = estimateCharacter(log.samples(channel), white, model);
+    // The body's sensors: their fast content is noise (sensor_character.h).
+    const bool body = channel == C::kYawRate || channel == C::kLateralAcceleration;
+    const ChannelCharacter c = estimateCharacter(log.samples(channel), white, model, body);
     if (!c.plain()) n.character[column] = c;
   }
   if (log.log().hasSteeringRate()) {

@@ -124,7 +124,7 @@ double quantisedNoiseLevel(const ChannelCharacter& c, double observed_var, const
 }  // namespace
 
 ChannelCharacter estimateCharacter(const std::vector<double>& values, double white_sigma,
-                                   const std::vector<double>& nominal) {
+                                   const std::vector<double>& nominal, bool colour_where_continuous) {
   ChannelCharacter c;
   c.sigma = white_sigma;
   if (values.size() < kMinimumSamples) return c;
@@ -175,17 +175,19 @@ ChannelCharacter estimateCharacter(const std::vector<double>& values, double whi
     }
   }
   if (d2.n < kMinimumSamples || !(d2.var > 0.0)) return c;
-  // Colour only on a bus's channels (quantised or held): on a continuous one the second differences
-  // cannot tell coloured noise from the signal's own fast content (a steering loop ringing at 120 Hz in
-  // a 1 kHz log reads as a lag-one correlation of 0.7), and the suite's own logs would get noise they
-  // do not have.
+  // Colour on a bus's channels (quantised or held), and on a continuous one where the caller says its fast
+  // content is the noise's. On a continuous channel of the steering loop the second differences cannot
+  // tell coloured noise from the loop's own fast content (its ringing at 120 Hz in a 1 kHz log reads as a
+  // lag-one correlation of 0.7; less the nominal, at 100 Hz a model's miss between readings does: tried,
+  // docs/gap.md); the yaw rate and lateral acceleration are the car body's, which passes nothing of that
+  // (its modes lie below a few hertz), so what correlates their noise is the sensor's filter.
   // The rounding onto the grid adds white noise of q^2 / 12 per reading: 6 q^2 / 12 to the variance of
   // the second differences and -4 q^2 / 12 to their lag-one covariance. Taken out before the colour is
   // read (left in, it pulls the correlation towards white noise's -2/3: a bus gyro's AR 0.7 read as 0.3).
   const double rounding = c.quantum * c.quantum / 12.0;
   const double var = d2.var - 6.0 * rounding, cov = d2.correlation * d2.var + 4.0 * rounding;
   const double rho = var > 0.0 ? std::clamp(correlationFromSecondDifferences(cov / var), -0.9, 0.9) : 0.0;
-  if ((c.quantum > 0.0 || c.hold > 1) && std::fabs(rho) >= 0.3) c.ar = rho;
+  if ((c.quantum > 0.0 || c.hold > 1 || colour_where_continuous) && std::fabs(rho) >= 0.3) c.ar = rho;
   if (c.quantum > 0.0) {
     // The level by simulation (above), on the signal under the noise: the nominal's, or where the
     // readings alone were used, their moving average over five (off the grid, as a signal is).
