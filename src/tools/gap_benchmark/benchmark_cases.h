@@ -103,7 +103,8 @@ SimConfig benchmarkCaseNominal(const BenchmarkCase& c);
 /// The truth configuration of a case: its nominal with the case's overlay applied.
 SimConfig benchmarkTruth(const BenchmarkCase& c);
 /// Simulates the truth of a case and returns its noisy log, each column through its sensor character
-/// where the case gives one (throws if the truth run diverges).
+/// where the case gives one (throws if the truth run diverges), sampled at the case's own log rate where it
+/// has one (BenchmarkCase::log_rate), else at `log_rate`.
 GapLog generateBenchmarkLog(const BenchmarkCase& c, const SensorNoise& noise = {}, double log_rate = 500.0);
 
 }  // namespace lane_keeping

@@ -186,7 +186,7 @@ TEST(BenchmarkFamily, StartGroupPairsEachLimitWithItsCorrectionAloneAndEveryRunS
       EXPECT_EQ(c.truth, "torque_limit") << c.id;
     }
     const BenchmarkCase corrected = c.heldout_manoeuvre.empty() ? c : heldoutRunOf(c);
-    const GapLog log = generateBenchmarkLog(corrected, SensorNoise{}, corrected.log_rate > 0.0 ? corrected.log_rate : 500.0);
+    const GapLog log = generateBenchmarkLog(corrected);
     EXPECT_TRUE(diagnosis::startsWithTransient(LogSignals(log), benchmarkCaseNominal(corrected))) << corrected.id;
   }
   EXPECT_EQ(limited.size(), 4u);

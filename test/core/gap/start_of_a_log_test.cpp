@@ -18,7 +18,7 @@ namespace diagnosis {
 namespace {
 
 RunData runOf(const BenchmarkCase& c) {
-  const GapLog log = generateBenchmarkLog(c, SensorNoise{}, c.log_rate > 0.0 ? c.log_rate : 500.0);  // 0: the default
+  const GapLog log = generateBenchmarkLog(c);  // at the case's own rate, else 500 Hz
   RunData run;
   run.log = std::make_shared<const LogSignals>(log);
   run.config = std::make_shared<const SimConfig>(benchmarkCaseNominal(c));

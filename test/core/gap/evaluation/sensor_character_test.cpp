@@ -211,7 +211,7 @@ TEST(SensorCharacter, AnAccelerometerOffsetThroughColouredContinuousSensorsIsNam
   // offset's fit left (the log's coloured a_y) was "structured beyond the noise", and a -0.2 m/s^2 offset that
   // removed 49.8 % of the held-out gap was a partial explanation. The body's sensors' colour is read: named.
   const BenchmarkCase c = independentCase("sensor-ay_offset-lane_change-bus_coloured");
-  const GapLog log = generateBenchmarkLog(c, SensorNoise{}, c.log_rate > 0.0 ? c.log_rate : 500.0);
+  const GapLog log = generateBenchmarkLog(c);
   const LogSignals signals(log);
   const SensorNoise noise = estimatedNoise(signals, nullptr);
   ASSERT_TRUE(noise.character.count("ay"));

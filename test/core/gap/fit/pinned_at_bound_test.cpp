@@ -55,7 +55,7 @@ TEST(PinnedAtBound, AFitTheDataPlaceOffItsBoundIsNotPinnedHoweverWideTheRange) {
 // held-out gap) was flagged pinned, and an actuation delay that imitates it (75 %) was named.
 TEST(PinnedAtBound, AFewMillisecondsOfSteeringAngleLatencyOnABusAreNamedNotAnActuationDelay) {
   const BenchmarkCase c = independentCase("sensor-steering_latency-lane_change-bus_quantised");
-  const GapLog log = generateBenchmarkLog(c, SensorNoise{}, c.log_rate > 0.0 ? c.log_rate : 500.0);
+  const GapLog log = generateBenchmarkLog(c);
   const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {log}, {}, DiagnosisOptions{});
   std::printf("[ measured ] verdict %s (%s), shrink %.3f: %s\n", r.verdict.effect.c_str(), r.verdict.form.c_str(),
               r.verdict.shrink, r.verdict.reason.c_str());
@@ -76,7 +76,7 @@ TEST(PinnedAtBound, AnUnpinnedLookAlikeAtAGapOfNilDoesNotStopTheDelaysBoundedRef
   DiagnosisOptions options;
   options.effects = {"actuation_delay", "sensor_latency"};
   options.closed_loop = false;
-  const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {generateBenchmarkLog(c, SensorNoise{}, c.log_rate)}, {},
+  const GapReport r = diagnoseGap(benchmarkCaseNominal(c), {generateBenchmarkLog(c)}, {},
                                   options);
   std::printf("[ measured ] verdict %s (%s): %s\n", r.verdict.effect.c_str(), r.verdict.form.c_str(),
               r.verdict.reason.c_str());
