@@ -60,7 +60,10 @@ void usage(std::ostream& out) {
          "  --coarse-fit-stride K   fit each candidate coarse to fine: search on every K-th 2 s piece of the\n"
          "             training data, finish on all of it (default 3; 1: search all the data; docs/gap.md)\n"
          "  --one-fold   where the held-out test alone misses a gap both sides together show, say so and stop\n"
-         "             (default: hold each side out in turn and name an effect both folds name; docs/gap.md)\n"
+         "             (default: hold each side out in turn and name an effect both folds name; with three runs\n"
+         "             or more, hold each run out in turn and decide on the held-out evidence summed over them)\n"
+         "  --every-fold hold every run (or side) out in turn even where the held-out test alone detects the gap,\n"
+         "             and list each fold in the report\n"
          "  --candidate-forms-only   do not fit the other forms of the leader and of further effects\n"
          "             (LuGre kingpin friction for steering_friction, a soft saturation for torque_limit,\n"
          "             the contact patch's length for cornering_stiffness; docs/gap.md, \"How far\")\n"
@@ -135,6 +138,7 @@ Arguments parseArguments(int argc, char** argv) {
     }
     else if (arg == "--time-budget") a.time_budget_hours = numberOption(arg, value(), 0.0, 1e4, "h");
     else if (arg == "--one-fold") a.options.two_folds = false;
+    else if (arg == "--every-fold") a.options.every_fold = true;
     else if (arg == "--candidate-forms-only") a.options.leader_forms = false;
     else if (arg == "--no-plots") a.plots = false;
     else if (arg == "--quiet") a.quiet = true;

@@ -53,6 +53,14 @@ DiagnosisBudget estimateDiagnosisBudget(const std::vector<GapRun>& training, con
   const double candidates = options.effects.empty() ? 1.0 : std::min(1.0, options.effects.size() / 11.0);
   b.seconds = b.simulated_steps * kSecondsPerPlantStep / parallel +
               (b.span * kFitSecondsPerLogSecond * candidates + b.rows * kSecondsPerRow) * 2.0 / parallel;
+  // Three runs or more: each held out in turn, a diagnosis of (nearly) all the data per run (fold_pooling.h);
+  // every fold asked for with fewer: the sides swapped, a second one.
+  const std::size_t runs = training.size() + heldout.size();
+  if (options.two_folds && runs >= 3) {
+    b.seconds *= static_cast<double>(runs);
+  } else if (options.two_folds && options.every_fold) {
+    b.seconds *= 2.0;
+  }
   b.bytes = kBaseBytes + kBytesPerRow * b.rows * std::max(1.0, threads / 2.0);
   return b;
 }

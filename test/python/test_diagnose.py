@@ -90,6 +90,22 @@ def test_the_folds_and_forms_switches_are_lk_gaps(lk, logs):
     assert any(n.startswith("steering_friction: the leader's forms") for n in on["notes"])
 
 
+def test_every_fold_is_lk_gaps(lk, logs):
+    """every_fold is lk_gap's --every-fold: each run held out in turn and both folds listed, though the held-out
+    run alone detects the gap."""
+    folder, runs = logs
+    (train, train_scenario), (held, held_scenario) = runs["train"], runs["held"]
+    expected = lk_gap_report(folder, "--log", train, "--scenario", train_scenario, "--holdout", held, "--scenario",
+                             held_scenario, "--every-fold")
+    assert expected["detection"]["heldout"]["detected"]
+    folds = expected["folds"]
+    assert len(folds) == 2
+    assert folds[0]["heldout"] == folds[1]["training"] and folds[1]["heldout"] == folds[0]["training"]
+    got = lk.diagnose(NOMINAL, [{"log": train, "scenario": train_scenario}], [{"log": held, "scenario": held_scenario}],
+                      every_fold=True, **OPTIONS)
+    assert without_wall_times(got) == without_wall_times(expected)
+
+
 def test_a_frames_bad_rows_are_named(lk, logs):
     _, runs = logs
     train = runs["train"][0]

@@ -3,6 +3,7 @@
 /// the replays' options, parallelism and progress reporting.
 #include <functional>
 #include <limits>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -60,12 +61,19 @@ struct DiagnosisOptions {
   /// again with training and held-out data swapped, and an effect is named only if both folds name it
   /// (fold_pooling.h; issue 47, kind 1).
   bool two_folds = true;
+  /// Hold every run (or side) out in turn even where the held-out test alone detects the gap: the folds
+  /// decide as they do on the pooled test, and the report lists each (lk_gap --every-fold).
+  bool every_fold = false;
   /// Fit the leader's other forms (LuGre kingpin friction, a soft saturation) and let the one that fits
   /// better stand for it (leader_forms.h; issue 47, kind 7).
   bool leader_forms = true;
-  /// Which fold this diagnosis is: 0 the split as splitData makes it, 1 its two sides swapped (set by the
-  /// diagnosis for its second fold).
+  /// Which fold this diagnosis is: 0 the split as splitData makes it, 1 another fold (its two sides
+  /// swapped, or one run held out of three or more; set by the diagnosis for the folds it runs).
   int fold = 0;
+  /// A fold of every run held out in turn fits exactly these candidates (labels), whatever its own tests
+  /// say: the split as made decided that there is a gap and which candidates can change it, and the folds'
+  /// held-out evidence is pooled candidate by candidate (fold_pooling.h). Empty: the diagnosis decides.
+  std::set<std::string> fold_candidates;
   std::vector<std::string> effects; ///< restrict the candidates (empty: all)
   std::function<void(const std::string&)> progress;  ///< progress messages (may be empty)
 };

@@ -219,6 +219,10 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
       report.not_testable.push_back({c.label(), "acts on the " + c.channel + " column, which the logs do not hold in known units"});
       continue;
     }
+    if (!options.fold_candidates.empty()) {
+      if (options.fold_candidates.count(c.label()) > 0) candidates.push_back(&c);
+      continue;
+    }
     if (!any_gap) {
       report.not_fitted.push_back({c.label(), "no gap: the nominal matches the logs to within the noise-only draws"});
       continue;
@@ -314,8 +318,52 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   report.verdict = decideVerdict(report.ranking, context, options);
   // The second fold's verdict is all the first reads of it (fold_pooling.h).
   if (options.fold == 1) return report;
-  if (on_pooled) {
-    say("the held-out data alone do not detect the gap, both sides together do: the second fold, sides swapped");
+  std::vector<GapRun> every_run = training;
+  every_run.insert(every_run.end(), heldout.begin(), heldout.end());
+  // Three runs or more: each held out in turn, fitted on the others, the verdict decided again on the
+  // held-out evidence pooled over the folds, wherever candidates were fitted (fold_pooling.h). One or two:
+  // the sides swapped where the held-out test alone misses the gap, or where every fold is asked for.
+  const bool run_folds = options.two_folds && every_run.size() >= 3 && !candidates.empty();
+  const bool swapped_fold = on_pooled || (options.every_fold && options.two_folds);
+  if (run_folds) {
+    say("every run held out in turn (" + std::to_string(every_run.size()) + " folds)");
+    const Clock::time_point fold_start = Clock::now();
+    DiagnosisOptions fold_options = options;
+    fold_options.fold = 1;
+    for (const CandidateEffect* c : candidates) fold_options.fold_candidates.insert(c->label());
+    // The split as made is one of these folds where it holds out exactly one run: its ranking is reused.
+    const std::vector<std::string> held_as_made =
+        heldout.empty() ? split.held_blocks : std::vector<std::string>(report.heldout);
+    std::vector<std::vector<RankedEffect>> rankings;
+    for (std::size_t k = 0; k < every_run.size(); ++k) {
+      const std::string& source = every_run[k].log.source;
+      if (held_as_made == std::vector<std::string>{source} ||
+          held_as_made == std::vector<std::string>{source + " (whole run)"}) {
+        report.folds.push_back(foldOf(report, heldout.empty() ? split.train_blocks : report.logs));
+        rankings.push_back(report.ranking);
+        continue;
+      }
+      std::vector<GapRun> others;
+      for (std::size_t i = 0; i < every_run.size(); ++i) {
+        if (i != k) others.push_back(every_run[i]);
+      }
+      if (options.progress) {
+        fold_options.progress = [&, k](const std::string& m) { say("fold " + std::to_string(k + 1) + ": " + m); };
+      }
+      const GapReport fold = diagnoseGap(nominal, others, {every_run[k]}, fold_options, nullptr);
+      report.folds.push_back(foldOf(fold, fold.logs));
+      rankings.push_back(fold.ranking);
+    }
+    report.ranking = pooledRanking(report.ranking, rankings, &report.notes);
+    report.notes.push_back("the ranking's held-out gaps and evidence are pooled over the " +
+                           std::to_string(rankings.size()) + " folds (every run held out once); its parameters and "
+                           "training gaps are the split's as made");
+    if (!report.ranking.empty()) context.gap_before = report.ranking.front().heldout_gap_before;
+    report.verdict = decideVerdict(report.ranking, context, options);
+    describeRunFolds(&report.verdict, report.detection, report.folds);
+    report.wall_seconds.emplace_back("every run held out", secondsSince(fold_start));
+  } else if (swapped_fold && every_run.size() < 3) {
+    say("each side held out in turn: the second fold, sides swapped");
     const Clock::time_point fold_start = Clock::now();
     DiagnosisOptions second = options;
     second.fold = 1;

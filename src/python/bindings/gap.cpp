@@ -82,6 +82,7 @@ py::tuple diagnose(py::handle nominal_layers, py::sequence training_runs, py::se
   options.coarse_fit_stride = options_in["coarse_fit_stride"].cast<std::size_t>();
   options.effects = options_in["effects"].cast<std::vector<std::string>>();
   options.two_folds = options_in["two_folds"].cast<bool>();
+  if (options_in.contains("every_fold")) options.every_fold = options_in["every_fold"].cast<bool>();
   options.leader_forms = options_in["leader_forms"].cast<bool>();
   if (options.noise_reference_draws < 0 || options.noise_reference_draws > 100) {
     throw ConfigError("noise_reference_draws must be between 0 and 100");

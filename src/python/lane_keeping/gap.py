@@ -43,7 +43,7 @@ def _runs(items, name):
 
 
 def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threads=2, noise_reference_draws=19,
-             coarse_fit_stride=3, two_folds=True, leader_forms=True, progress=None, series=False):
+             coarse_fit_stride=3, two_folds=True, every_fold=False, leader_forms=True, progress=None, series=False):
     """The sim-to-real gap diagnosis, as `lk_gap --config NOMINAL --log ... [--holdout ...] --report DIR`.
 
     nominal:  the nominal configuration (as simulate() takes it; a `log:` section maps every log's columns)
@@ -54,7 +54,10 @@ def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threa
     overrides: applied to the nominal last (lk_gap --set)
     effects:  restrict the candidates (lk_gap --effects); threads, noise_reference_draws, coarse_fit_stride:
               lk_gap's options of those names
-    two_folds: hold each side out in turn where the held-out side alone misses the gap (False: lk_gap --one-fold)
+    two_folds: hold each side out in turn where the held-out side alone misses the gap (False: lk_gap --one-fold);
+               with three runs or more, each run in turn
+    every_fold: hold every run (or side) out in turn even where the held-out side alone detects the gap
+                (lk_gap --every-fold); report["folds"] lists each
     leader_forms: fit the LuGre, soft or contact-length form of the leader and of further effects
                   (False: lk_gap --candidate-forms-only)
     progress: a callable given each progress message (lk_gap prints them on stderr)
@@ -65,7 +68,7 @@ def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threa
     """
     options = {"threads": int(threads), "noise_reference_draws": int(noise_reference_draws),
                "coarse_fit_stride": int(coarse_fit_stride), "effects": list(effects or []),
-               "two_folds": bool(two_folds), "leader_forms": bool(leader_forms)}
+               "two_folds": bool(two_folds), "every_fold": bool(every_fold), "leader_forms": bool(leader_forms)}
     text, artifacts = _lane_keeping.diagnose(config_layers(nominal, overrides), _runs(logs, "logs"),
                                              _runs(holdout, "holdout"), options, progress)
     report = json.loads(text)

@@ -1,5 +1,6 @@
 #include "lane_keeping/gap/decision/fold_pooling.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -50,6 +51,21 @@ std::string figures(const GapFold& f) {
   return s.str();
 }
 
+/// Why the folds ran: the held-out test alone missed the gap, or they were asked for.
+std::string whyFolds(const GapDetection& detection, const std::string& held_out_in_turn) {
+  std::ostringstream why;
+  if (detection.heldout.detected) {
+    why << "the held-out data alone detect the gap (p = " << briefNumber(detection.heldout.p_value) << "), and "
+        << held_out_in_turn;
+  } else {
+    why << "the held-out data alone do not detect the gap (p = " << briefNumber(detection.heldout.p_value)
+        << ", training p = " << briefNumber(detection.training.p_value) << "); both sides together do (p = "
+        << briefNumber(detection.pooled.p_value) << " among " << detection.draws << " noise-only draws), so "
+        << held_out_in_turn;
+  }
+  return why.str();
+}
+
 }  // namespace
 
 void poolFolds(GapVerdict* verdict, const GapDetection& detection, const std::vector<GapFold>& folds) {
@@ -57,11 +73,8 @@ void poolFolds(GapVerdict* verdict, const GapDetection& detection, const std::ve
   const GapFold& first = folds[0];
   const GapFold& second = folds[1];
   std::ostringstream why;
-  why << "the held-out data alone do not detect the gap (p = " << briefNumber(detection.heldout.p_value)
-      << ", training p = " << briefNumber(detection.training.p_value) << "); both sides together do (p = "
-      << briefNumber(detection.pooled.p_value) << " among " << detection.draws
-      << " noise-only draws), so each side was held out in turn: fold 1 " << figures(first) << "; fold 2 (sides swapped) "
-      << figures(second);
+  why << whyFolds(detection, "each side was held out in turn") << ": fold 1 " << figures(first)
+      << "; fold 2 (sides swapped) " << figures(second);
   const bool agree = first.effect != "unexplained" && first.effect == second.effect && first.form == second.form;
   if (agree) {
     verdict->reason = why.str() + ". Both folds name it. " + verdict->reason;
@@ -74,6 +87,57 @@ void poolFolds(GapVerdict* verdict, const GapDetection& detection, const std::ve
     return;
   }
   *verdict = unexplainedVerdict(verdict->gap_before, why.str() + ": the folds do not agree, not diagnosed");
+}
+
+std::vector<RankedEffect> pooledRanking(const std::vector<RankedEffect>& first,
+                                        const std::vector<std::vector<RankedEffect>>& folds,
+                                        std::vector<std::string>* notes) {
+  std::vector<RankedEffect> pooled;
+  for (const RankedEffect& r : first) {
+    RankedEffect p = r;
+    double before2 = 0.0, after2 = 0.0, evidence = 0.0;
+    bool everywhere = true;
+    for (const auto& ranking : folds) {
+      const RankedEffect* same = nullptr;
+      for (const RankedEffect& f : ranking) {
+        if (f.label() == r.label()) same = &f;
+      }
+      if (same == nullptr) {
+        everywhere = false;
+        break;
+      }
+      before2 += same->heldout_gap_before * same->heldout_gap_before;
+      after2 += same->heldout_gap_after * same->heldout_gap_after;
+      evidence += same->score;
+      p.closed_loop_bounded = p.closed_loop_bounded && same->closed_loop_bounded;
+    }
+    if (!everywhere) {
+      if (notes != nullptr) notes->push_back(r.label() + ": not ranked in every fold, left out of the pooled ranking");
+      continue;
+    }
+    p.heldout_gap_before = std::sqrt(before2);
+    p.heldout_gap_after = std::sqrt(after2);
+    p.shrink = p.heldout_gap_before > 0.0 ? 1.0 - p.heldout_gap_after / p.heldout_gap_before : 0.0;
+    p.score = evidence;
+    pooled.push_back(p);
+  }
+  std::stable_sort(pooled.begin(), pooled.end(), [](const RankedEffect& a, const RankedEffect& b) {
+    if (a.closed_loop_bounded != b.closed_loop_bounded) return a.closed_loop_bounded;
+    return a.heldout_gap_after < b.heldout_gap_after;
+  });
+  return pooled;
+}
+
+void describeRunFolds(GapVerdict* verdict, const GapDetection& detection, const std::vector<GapFold>& folds) {
+  std::ostringstream why;
+  why << whyFolds(detection, "each of the " + std::to_string(folds.size()) +
+                                 " runs was held out in turn, fitted on the others, and the verdict decided on the "
+                                 "held-out evidence summed over them");
+  for (std::size_t k = 0; k < folds.size(); ++k) {
+    why << (k == 0 ? ": " : "; ") << "fold " << (k + 1) << " (" << (folds[k].heldout.empty() ? "?" : folds[k].heldout.front())
+        << " held out) " << figures(folds[k]);
+  }
+  verdict->reason = why.str() + ". Pooled: " + verdict->reason;
 }
 
 }  // namespace diagnosis

@@ -10,7 +10,8 @@
 //                    "null_max", "detected"}, "training": {..}, "pooled": {..} (both sides together) }
 //                  (not tested: p_value null, no "detected"),
 //     "folds": [{"training": [..], "heldout": [..], "effect", "form", "basis", "heldout_p", "gap_before", "gap_after",
-//                "params": {}}] (both folds, where the verdict was decided on the pooled test; else empty),
+//                "params": {}}] (both folds, where the verdict was decided on the pooled test or every fold was
+//                asked for; each run held out in turn, with three runs or more; else empty),
 //     "where":   { "subsystem", "subsystems": [{"name", "nrmse", "noise_floor", "outputs": [..]}],
 //                  "windows": [{"log", "t0", "t1", "share", "log_t0"}], "onset" (optional),
 //                  "onsets": [{"log", "t", "since_start"}] (per run; since_start = t - the log's first sample),

@@ -130,7 +130,14 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
            "where the held-out gap reached the detection threshold\n";
   }
   if (!r.folds.empty()) {
-    out << "- each side held out in turn (the held-out test alone missed the gap, both sides together saw it):\n";
+    if (r.folds.size() > 2) {
+      out << "- each run held out in turn, fitted on the others (the verdict decided on the held-out evidence summed "
+             "over them):\n";
+    } else if (r.detection.heldout.detected) {
+      out << "- each side held out in turn (asked for):\n";
+    } else {
+      out << "- each side held out in turn (the held-out test alone missed the gap, both sides together saw it):\n";
+    }
     for (std::size_t k = 0; k < r.folds.size(); ++k) {
       const GapFold& f = r.folds[k];
       out << "  - fold " << (k + 1) << ", fitted on " << join(f.training, ", ") << ", scored on " << join(f.heldout, ", ")
