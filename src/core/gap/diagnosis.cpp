@@ -162,6 +162,7 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   setReference(nominal_all.scores, reference);
   report.where = whereAnalysis(nominal_all, everything, options.upstream_share, artifacts);
   const double gap_before = gapOf(nominal_held.scores, {});
+  for (const auto& [name, score] : nominal_held.scores) report.heldout_net_excess[name] = netExcess(score);
   report.detection = detectGap(nominal_train.scores, nominal_held.scores, null, options);
   // Where the held-out test alone misses the gap and both sides together see it, the diagnosis goes on in
   // two folds on the pooled test (fold_pooling.h); `decisive` is the test it goes on.
@@ -335,12 +336,14 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
     const std::vector<std::string> held_as_made =
         heldout.empty() ? split.held_blocks : std::vector<std::string>(report.heldout);
     std::vector<std::vector<RankedEffect>> rankings;
+    std::vector<std::map<std::string, double>> untouched_excess;  // each fold's nominal held-out net excess
     for (std::size_t k = 0; k < every_run.size(); ++k) {
       const std::string& source = every_run[k].log.source;
       if (held_as_made == std::vector<std::string>{source} ||
           held_as_made == std::vector<std::string>{source + " (whole run)"}) {
         report.folds.push_back(foldOf(report, heldout.empty() ? split.train_blocks : report.logs));
         rankings.push_back(report.ranking);
+        untouched_excess.push_back(report.heldout_net_excess);
         continue;
       }
       std::vector<GapRun> others;
@@ -353,12 +356,35 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
       const GapReport fold = diagnoseGap(nominal, others, {every_run[k]}, fold_options, nullptr);
       report.folds.push_back(foldOf(fold, fold.logs));
       rankings.push_back(fold.ranking);
+      untouched_excess.push_back(fold.heldout_net_excess);
     }
     report.ranking = pooledRanking(report.ranking, rankings, &report.notes);
     report.notes.push_back("the ranking's held-out gaps and evidence are pooled over the " +
                            std::to_string(rankings.size()) + " folds (every run held out once); its parameters and "
                            "training gaps are the split's as made");
     if (!report.ranking.empty()) context.gap_before = report.ranking.front().heldout_gap_before;
+    // What a candidate leaves, pooled too: the gap^2 in subsystems it does not change, summed over every
+    // run's held-out data, as a share of the pooled gap^2 (the residual's structure stays the split's as made).
+    context.partial_of = [&, of_split = context.partial_of](const RankedEffect& ranked) {
+      PartialExplanation p = of_split(ranked);
+      const CandidateEffect* effect = nullptr;
+      for (const CandidateEffect* c : candidates) {
+        if (c->name == ranked.effect && c->form == primaryForm(ranked.form)) effect = c;
+      }
+      const double before = context.gap_before;
+      if (effect == nullptr || before <= 0.0) return p;
+      double untouched = 0.0;
+      for (const auto& excess : untouched_excess) {
+        for (const auto& [name, e] : excess) {
+          if (std::find(effect->subsystems.begin(), effect->subsystems.end(), name) == effect->subsystems.end()) {
+            untouched += e * e;
+          }
+        }
+      }
+      p.untouched_share = untouched / (before * before);
+      judgePartial(&p, ranked.effect, options);
+      return p;
+    };
     report.verdict = decideVerdict(report.ranking, context, options);
     describeRunFolds(&report.verdict, report.detection, report.folds);
     report.wall_seconds.emplace_back("every run held out", secondsSince(fold_start));

@@ -372,7 +372,20 @@ BenchmarkCase heldoutRunOf(const BenchmarkCase& c) {
   h.seed = c.seed + 7919;
   h.heldout_manoeuvre.clear();
   h.heldout_setup.clear();
+  h.more_runs.clear();
   return h;
+}
+
+BenchmarkCase moreRunOf(const BenchmarkCase& c, std::size_t k) {
+  BenchmarkCase r = c;
+  r.id = c.id + ".run" + std::to_string(k + 2);
+  r.manoeuvre = c.more_runs.at(k).manoeuvre;
+  r.setup.insert(r.setup.end(), c.more_runs[k].setup.begin(), c.more_runs[k].setup.end());
+  r.seed = c.seed + 104729u * static_cast<unsigned>(k + 1);
+  r.heldout_manoeuvre.clear();
+  r.heldout_setup.clear();
+  r.more_runs.clear();
+  return r;
 }
 
 namespace {

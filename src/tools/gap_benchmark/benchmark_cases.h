@@ -22,6 +22,13 @@
 namespace lane_keeping {
 
 
+/// A further training run of a case (BenchmarkCase::more_runs): its road and the scenario keys on top of the
+/// case's set-up.
+struct MoreRun {
+  std::string manoeuvre;
+  std::vector<std::string> setup{};
+};
+
 /// One hidden effect of a case with several (BenchmarkCase::truths): a candidate name and the form
 /// (channel or placement) the verdict must name ("" = any).
 struct TruthEffect {
@@ -50,6 +57,9 @@ struct BenchmarkCase {
   /// user brings runs of different roads.
   std::string heldout_manoeuvre{};
   std::vector<std::string> heldout_setup{};  ///< scenario keys on top of the held-out manoeuvre
+  /// Further training runs (empty: none), each on its road with its own noise seed: the diagnosis gets them
+  /// as further `--log` runs with their scenarios; with three runs or more it holds each out in turn.
+  std::vector<MoreRun> more_runs{};
 
   // What the groups (independent_groups.h) need; every default leaves a case as it was (its log the
   // same to the last bit).
@@ -72,6 +82,9 @@ struct BenchmarkCase {
 
 /// The held-out run of a case: its manoeuvre, the case's set-up plus heldout_setup, its own noise seed.
 BenchmarkCase heldoutRunOf(const BenchmarkCase& c);
+/// The k-th further training run of a case (k from 0): its road, the case's set-up plus the run's keys, its
+/// own noise seed; its id the case's with ".run<k + 2>".
+BenchmarkCase moreRunOf(const BenchmarkCase& c, std::size_t k);
 /// The scenario of a case's run as lk_gap reads it (only the per-run keys: path, initial state,
 /// duration; gap_run.h), as YAML text.
 std::string benchmarkScenarioYaml(const BenchmarkCase& c);

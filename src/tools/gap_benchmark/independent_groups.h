@@ -23,6 +23,11 @@
 ///                   (+1.1 ms) at 50-300 Hz on every road, in two batches (the first one's p = 1500 log
 ///                   prompted the rule's last change, so only the second, "margin3", is untuned); a
 ///                   no-effect twin of each set-up and a nominal configured near its margin itself
+///   another car     an SUV-like car's effects and no-effect logs (issue 47 kind 5)
+///   three runs      eight effects each in three training runs on three roads (one often a quiet straight
+///                   road), each run with its own noise: every run held out in turn (fold_pooling.h); four
+///                   sets of three roads with nothing wrong; and "three runs, small effects": the eight at
+///                   about half those magnitudes
 ///
 /// Seeds from 20001 on: none of these logs is one anything was tuned on (but for the named exception).
 #include <string>

@@ -170,6 +170,14 @@ void generate(const std::string& dir, const std::string& family, const std::stri
       std::ofstream(dir + "/" + scenario) << benchmarkScenarioYaml(h);
       entry["heldout"] = {{"log", heldout_log}, {"scenario", scenario}};
     }
+    for (std::size_t k = 0; k < c.more_runs.size(); ++k) {  // further training runs, each with its scenario
+      makeDir(dir + "/scenarios");
+      const BenchmarkCase r = moreRunOf(c, k);
+      const std::string run_log = "logs/" + r.id + ".csv", scenario = "scenarios/" + r.id + ".yaml";
+      writeCsvLog(dir + "/" + run_log, generateBenchmarkLog(r, SensorNoise{}, log_rate));
+      std::ofstream(dir + "/" + scenario) << benchmarkScenarioYaml(r);
+      entry["more_runs"].push_back({{"log", run_log}, {"scenario", scenario}});
+    }
     cases.push_back(entry);
     truth.push_back(truthJson(c));
     std::fprintf(stderr, "[generate] %-44s %5zu rows  %.1f s\n", c.id.c_str(), log.size(),
@@ -179,13 +187,19 @@ void generate(const std::string& dir, const std::string& family, const std::stri
   writeJson(dir + "/truth.json", truth);
 }
 
-/// The training and held-out runs of a case as lk_gap builds them: the log under the case's nominal and,
-/// where the case has one, the held-out log with its own scenario.
+/// The training and held-out runs of a case as lk_gap builds them: the log under the case's nominal, its
+/// further runs with their scenarios and, where the case has one, the held-out log with its own scenario.
 std::pair<std::vector<GapRun>, std::vector<GapRun>> caseRuns(const std::string& dir, const json& c) {
   FlatParams nominal;
   nominal.overlayFile(nominalFile(dir, c));
   std::vector<GapRun> training, heldout;
   training.push_back(gapRun(readCsvLog(dir + "/" + c["log"].get<std::string>()), nominal, FlatParams{}, ""));
+  if (c.contains("more_runs")) {
+    for (const auto& run : c["more_runs"]) {
+      training.push_back(gapRun(readCsvLog(dir + "/" + run["log"].get<std::string>()), nominal,
+                                dir + "/" + run["scenario"].get<std::string>()));
+    }
+  }
   if (c.contains("heldout")) {
     heldout.push_back(gapRun(readCsvLog(dir + "/" + c["heldout"]["log"].get<std::string>()), nominal,
                              dir + "/" + c["heldout"]["scenario"].get<std::string>()));

@@ -83,12 +83,40 @@ TEST(BenchmarkFamily, IdsAndSeedsAreUnique) {
     EXPECT_EQ(c.id.find_first_of("/ \\"), std::string::npos) << c.id << ": an id names files";
     std::vector<BenchmarkCase> runs{c};
     if (!c.heldout_manoeuvre.empty()) runs.push_back(heldoutRunOf(c));
+    for (std::size_t k = 0; k < c.more_runs.size(); ++k) runs.push_back(moreRunOf(c, k));
     for (const BenchmarkCase& run : runs) {
       const auto [it, fresh] = seeds.emplace(run.seed, run.id);
       EXPECT_TRUE(fresh) << run.id << " shares seed " << run.seed << " with " << it->second;
     }
   }
   EXPECT_GE(ids.size(), 77u + 30u);  // 77 first cases, 30 of the sensor group
+}
+
+TEST(BenchmarkFamily, ThreeRunsGroupGivesEachCaseThreeRunsOnTheirOwnRoads) {
+  int in_list = 0, none = 0;
+  for (const BenchmarkCase& c : independentCases()) {
+    if (c.group.rfind("three runs", 0) != 0) {
+      EXPECT_TRUE(c.more_runs.empty()) << c.id;
+      continue;
+    }
+    in_list += c.category == "in_list";
+    none += c.category == "none";
+    ASSERT_EQ(c.more_runs.size(), 2u) << c.id;
+    EXPECT_TRUE(c.heldout_manoeuvre.empty()) << c.id << ": every run trains; the folds hold each out";
+    std::set<unsigned> seeds{c.seed};
+    for (std::size_t k = 0; k < 2; ++k) {
+      const BenchmarkCase r = moreRunOf(c, k);
+      EXPECT_EQ(r.id, c.id + ".run" + std::to_string(k + 2));
+      EXPECT_EQ(r.manoeuvre, c.more_runs[k].manoeuvre);
+      EXPECT_EQ(r.truth_overlay, c.truth_overlay) << r.id << ": the same car in every run";
+      EXPECT_EQ(r.setup.size(), c.setup.size() + c.more_runs[k].setup.size());
+      EXPECT_TRUE(r.more_runs.empty());
+      seeds.insert(r.seed);
+    }
+    EXPECT_EQ(seeds.size(), 3u) << c.id << ": each run its own noise";
+  }
+  EXPECT_EQ(in_list, 16);  // eight effects, at two sizes
+  EXPECT_EQ(none, 4);
 }
 
 TEST(BenchmarkFamily, EveryTruthIsACandidateInItsFormOrAnOutOfListName) {

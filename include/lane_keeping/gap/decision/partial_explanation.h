@@ -29,6 +29,10 @@ namespace diagnosis {
 /// The analysis of `fit` (ranked as `ranked`, the gap located in `where_subsystem`); the returned
 /// effect is empty when the fit explains the gap, else it names the partial candidate. The untouched
 /// subsystems are netted of `knock_on_reference` where it is above their own reference (knock_on.h).
+/// Whether `p` (its untouched share, share and residual p-values set) is a partial explanation: sets
+/// p->effect to `effect` if so (the rule above).
+void judgePartial(PartialExplanation* p, const std::string& effect, const DiagnosisOptions& options);
+
 PartialExplanation partialExplanation(const CandidateFit& fit, const RankedEffect& ranked, const std::string& where_subsystem,
                                       const Evaluation& nominal_held, const std::vector<Dataset>& held,
                                       const NoiseNull& null, double gap_before, const DiagnosisOptions& options,

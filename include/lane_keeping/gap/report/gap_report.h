@@ -229,9 +229,13 @@ struct GapReport {
   std::vector<UntestableEffect> not_fitted;
   GapSplit split;
   GapDetection detection;
-  /// Where the held-out test alone misses and the pooled one detects: both folds, the first as reported
-  /// (empty otherwise; fold_pooling.h).
+  /// Where the held-out test alone misses and the pooled one detects (or every fold is asked for): both
+  /// folds, the first as reported; with three runs or more, each run held out in turn (empty otherwise;
+  /// fold_pooling.h).
   std::vector<GapFold> folds;
+  /// The nominal's net excess per subsystem on the held-out data. Not written to report.json: what the
+  /// folds of every run held out in turn pool their partial explanation from (fold_pooling.h).
+  std::map<std::string, double> heldout_net_excess;
   GapWhere where;
   std::vector<RankedEffect> ranking;  ///< best first
   GapVerdict verdict;

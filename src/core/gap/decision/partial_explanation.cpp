@@ -8,6 +8,14 @@
 namespace lane_keeping {
 namespace diagnosis {
 
+void judgePartial(PartialExplanation* p, const std::string& effect, const DiagnosisOptions& options) {
+  const bool structured = std::min(p->whiteness_p, p->input_correlation_p) <= options.false_alarm_rate;
+  p->effect.clear();
+  if (p->untouched_share >= options.untouched_share || (p->share < options.half_explanation && structured)) {
+    p->effect = effect;
+  }
+}
+
 PartialExplanation partialExplanation(const CandidateFit& fit, const RankedEffect& ranked, const std::string& where_subsystem,
                                       const Evaluation& nominal_held, const std::vector<Dataset>& held,
                                       const NoiseNull& null, double gap_before, const DiagnosisOptions& options,
@@ -43,7 +51,6 @@ PartialExplanation partialExplanation(const CandidateFit& fit, const RankedEffec
     out.whiteness_p = monteCarloPValue(it->second.whiteness, whiteness);
     out.input_correlation_p = monteCarloPValue(it->second.input_correlation, input);
   }
-  const bool structured = std::min(out.whiteness_p, out.input_correlation_p) <= options.false_alarm_rate;
   // Its share of the gap on the data it was fitted to as well as on held-out data: held-out data can hold
   // a noise realisation beyond the null's draws that no model removes (the benchmark's small actuation
   // delay on a sinusoid: 100 % of the training gap, 36 % of the held-out one, as much as the truth model
@@ -52,9 +59,7 @@ PartialExplanation partialExplanation(const CandidateFit& fit, const RankedEffec
   const double train_share =
       ranked.train_gap_before > 0.0 ? 1.0 - ranked.train_gap_after / ranked.train_gap_before : 0.0;
   out.share = std::max(ranked.shrink, train_share);
-  if (out.untouched_share >= options.untouched_share || (out.share < options.half_explanation && structured)) {
-    out.effect = ranked.effect;
-  }
+  judgePartial(&out, ranked.effect, options);
   return out;
 }
 

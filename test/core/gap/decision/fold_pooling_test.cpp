@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <map>
 #include <memory>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,7 @@
 #include "lane_keeping/gap/decision/noise_null.h"
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/diagnosis_data.h"
+#include "lane_keeping/gap/log/gap_run.h"
 #include "lane_keeping/gap/report/gap_report.h"
 
 namespace lane_keeping {
@@ -302,6 +304,42 @@ TEST(FoldPooling, ThreeRunsOfAGyroBiasAreEachHeldOutAndNamedOnTheirSummedEvidenc
   EXPECT_TRUE(one.folds.empty());
   ASSERT_FALSE(one.ranking.empty());
   EXPECT_LT(one.ranking.front().score, 0.0);  // the bias, with the held-out run's evidence below zero
+}
+
+TEST(FoldPooling, WhatACandidateLeavesIsPooledOverTheRunsToo) {
+  // The independent family's three-run set with +1 ms of actuation delay (a sinusoid, a lane change and a
+  // bend). The split as made holds out the lane change, where 41.5 % of a small gap lies in subsystems the
+  // delay does not change: "a partial explanation". Each run held out in turn, the delay removes 83 % of the
+  // three runs' gap, and the untouched part, summed over the three runs' held-out data, is a few per cent of
+  // theirs: named. (Found on that set, so not an untuned figure.) Three candidates, no closed loop.
+  const BenchmarkCase c = independentCase("actuation_delay-three_small-sinusoid-lane_change-bend");
+  FlatParams nominal;
+  {
+    std::ostringstream yaml;
+    benchmarkCaseNominal(c).print(yaml);
+    nominal.overlayText(yaml.str(), "the case's nominal");
+  }
+  std::vector<GapRun> runs{gapRun(generateBenchmarkLog(c), nominal, FlatParams{}, "")};
+  for (std::size_t k = 0; k < c.more_runs.size(); ++k) {
+    const BenchmarkCase r = moreRunOf(c, k);
+    FlatParams scenario;
+    scenario.overlayText(benchmarkScenarioYaml(r), r.id + ".yaml");
+    GapLog log = generateBenchmarkLog(r);
+    log.source = r.id + ".csv";
+    runs.push_back(gapRun(std::move(log), nominal, scenario, r.id + ".yaml"));
+  }
+  DiagnosisOptions options;
+  options.effects = {"actuation_delay", "sensor_latency", "inertia"};
+  options.closed_loop = false;
+  const SimConfig shared = benchmarkCaseNominal(c);
+  const GapReport three = diagnoseGap(shared, runs, {}, options);
+  std::printf("[ measured ] three runs: %s: %s\n", three.verdict.effect.c_str(), three.verdict.reason.c_str());
+  EXPECT_EQ(three.verdict.effect, "actuation_delay") << three.verdict.reason;
+  ASSERT_EQ(three.folds.size(), 3u);
+  options.two_folds = false;
+  const GapReport one = diagnoseGap(shared, runs, {}, options);
+  EXPECT_EQ(one.verdict.effect, "unexplained") << one.verdict.reason;
+  EXPECT_NE(one.verdict.reason.find("subsystems it does not change"), std::string::npos) << one.verdict.reason;
 }
 
 }  // namespace
