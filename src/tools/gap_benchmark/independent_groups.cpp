@@ -148,6 +148,14 @@ std::vector<std::string> joined(std::vector<std::string> a, const std::vector<st
   a.insert(a.end(), b.begin(), b.end());
   return a;
 }
+/// A quiet straight road: from a 0.2 m offset with a weaker identification signal (a run that barely
+/// excites an effect).
+const std::vector<std::string>& quietStraight() {
+  static const std::vector<std::string> quiet{"simulation.initial.y=0.2", "tracker.excitation_amplitude=0.0015"};
+  return quiet;
+}
+/// Gives `c` further training runs (BenchmarkCase::more_runs).
+void withRuns(BenchmarkCase& c, std::vector<MoreRun> more) { c.more_runs = std::move(more); }
 
 void sensorErrors(GroupBuilder& b) {
   b.group("sensor errors");
@@ -286,7 +294,7 @@ void startOfALog(GroupBuilder& b) {
 // signal), the weak one held out or training; and the same pairs of roads with nothing wrong.
 void oneRunWeak(GroupBuilder& b) {
   b.group("one run excites weakly");
-  const std::vector<std::string> quiet{"simulation.initial.y=0.2", "tracker.excitation_amplitude=0.0015"};
+  const std::vector<std::string>& quiet = quietStraight();
   auto pair = [&](const std::string& id, const std::string& category, const std::string& truth, const std::string& size,
                   const std::string& manoeuvre, std::vector<std::string> overlay, std::vector<std::string> setup,
                   const std::string& other, std::vector<std::string> other_setup) {
@@ -424,40 +432,39 @@ void anotherCar(GroupBuilder& b) {
 // them; and four sets of three roads with nothing wrong.
 void threeRuns(GroupBuilder& b) {
   b.group("three runs");
-  const std::vector<std::string> quiet{"simulation.initial.y=0.2", "tracker.excitation_amplitude=0.0015"};
-  auto three = [&](BenchmarkCase& c, std::vector<MoreRun> more) { c.more_runs = std::move(more); };
+  const std::vector<std::string>& quiet = quietStraight();
   const double deg = M_PI / 180.0;
-  three(b.add("cornering_stiffness-three-sinusoid-lane_change-straight", "in_list", "cornering_stiffness", "",
+  withRuns(b.add("cornering_stiffness-three-sinusoid-lane_change-straight", "in_list", "cornering_stiffness", "",
               "x0.85 / x0.9", "sinusoid", {"tire.front.lateral_stiffness=1.7e6", "tire.rear.lateral_stiffness=1.8e6"}, {}),
         {{"lane_change"}, {"straight", quiet}});
-  three(b.add("tire_lag-three-lane_change-bend-straight", "in_list", "tire_lag", "", "0.7 m", "lane_change",
+  withRuns(b.add("tire_lag-three-lane_change-bend-straight", "in_list", "tire_lag", "", "0.7 m", "lane_change",
               {"tire.front.model=lugre_distributed", "tire.rear.model=lugre_distributed", "tire.front.lugre.bristles=40",
                "tire.rear.lugre.bristles=40", "tire.front.relaxation_length=0.7", "tire.rear.relaxation_length=0.7"},
               {}),
         {{"bend"}, {"straight", quiet}});
-  three(b.add("sensor-yaw_rate_offset-three-lane_change-bend-sinusoid", "in_list", "sensor_offset", "yaw_rate",
+  withRuns(b.add("sensor-yaw_rate_offset-three-lane_change-bend-sinusoid", "in_list", "sensor_offset", "yaw_rate",
               "0.003 rad/s", "lane_change", {"sensors.yaw_rate_bias=0.003"}, {}),
         {{"bend"}, {"sinusoid"}});
-  three(b.add("sensor-heading_mount-three-bend-sinusoid-straight", "in_list", "sensor_offset", "heading", "0.5 deg",
+  withRuns(b.add("sensor-heading_mount-three-bend-sinusoid-straight", "in_list", "sensor_offset", "heading", "0.5 deg",
               "bend", {"sensors.pose_bias_psi=" + num(0.5 * deg)}, {}),
         {{"sinusoid"}, {"straight", {"simulation.initial.y=0.5"}}});
-  three(b.add("steering_friction-three-sinusoid-bend-straight", "in_list", "steering_friction", "", "LuGre 3 / 4.5 N m",
+  withRuns(b.add("steering_friction-three-sinusoid-bend-straight", "in_list", "steering_friction", "", "LuGre 3 / 4.5 N m",
               "sinusoid", lugreFriction(3.0, 4.5), {}),
         {{"bend"}, {"straight", quiet}});
-  three(b.add("inertia-three-lane_change-sinusoid-bend", "in_list", "inertia", "", "J x1.2, m x1.08, G 4 cm back",
+  withRuns(b.add("inertia-three-lane_change-sinusoid-bend", "in_list", "inertia", "", "J x1.2, m x1.08, G 4 cm back",
               "lane_change", bootLoad(1.2, 1.08, 0.04), {}),
         {{"sinusoid"}, {"bend"}});
-  three(b.add("actuation_delay-three-sinusoid-lane_change-straight", "in_list", "actuation_delay", "", "+2 ms",
+  withRuns(b.add("actuation_delay-three-sinusoid-lane_change-straight", "in_list", "actuation_delay", "", "+2 ms",
               "sinusoid", {"delays.torque_to_plant=0.002"}, {}),
         {{"lane_change"}, {"straight", {"simulation.initial.y=1"}}});
-  three(b.add("lateral_disturbance-three-bend-lane_change-sinusoid", "in_list", "lateral_disturbance", "", "400 N",
+  withRuns(b.add("lateral_disturbance-three-bend-lane_change-sinusoid", "in_list", "lateral_disturbance", "", "400 N",
               "bend", crosswind(400.0, 0.2), {}),
         {{"lane_change"}, {"sinusoid"}});
   // Nothing wrong, on such roads.
-  three(b.none("none-three-sinusoid-lane_change-straight", "sinusoid", {}), {{"lane_change"}, {"straight", quiet}});
-  three(b.none("none-three-lane_change-bend-sinusoid", "lane_change", {}), {{"bend"}, {"sinusoid"}});
-  three(b.none("none-three-bend-sinusoid-straight", "bend", {}), {{"sinusoid"}, {"straight", {"simulation.initial.y=0.5"}}});
-  three(b.none("none-three-lane_change-x3", "lane_change", {}),
+  withRuns(b.none("none-three-sinusoid-lane_change-straight", "sinusoid", {}), {{"lane_change"}, {"straight", quiet}});
+  withRuns(b.none("none-three-lane_change-bend-sinusoid", "lane_change", {}), {{"bend"}, {"sinusoid"}});
+  withRuns(b.none("none-three-bend-sinusoid-straight", "bend", {}), {{"sinusoid"}, {"straight", {"simulation.initial.y=0.5"}}});
+  withRuns(b.none("none-three-lane_change-x3", "lane_change", {}),
         {{"lane_change", {"simulation.initial.y=0.3"}}, {"lane_change", {"simulation.initial.y=-0.3"}}});
 }
 
@@ -465,34 +472,33 @@ void threeRuns(GroupBuilder& b) {
 // their magnitudes, after the group above ran all right and before any of these ran).
 void threeRunsSmall(GroupBuilder& b) {
   b.group("three runs, small effects");
-  const std::vector<std::string> quiet{"simulation.initial.y=0.2", "tracker.excitation_amplitude=0.0015"};
-  auto three = [&](BenchmarkCase& c, std::vector<MoreRun> more) { c.more_runs = std::move(more); };
+  const std::vector<std::string>& quiet = quietStraight();
   const double deg = M_PI / 180.0;
-  three(b.add("cornering_stiffness-three_small-sinusoid-lane_change-straight", "in_list", "cornering_stiffness", "",
+  withRuns(b.add("cornering_stiffness-three_small-sinusoid-lane_change-straight", "in_list", "cornering_stiffness", "",
               "x0.93 / x0.95", "sinusoid", {"tire.front.lateral_stiffness=1.86e6", "tire.rear.lateral_stiffness=1.9e6"},
               {}),
         {{"lane_change"}, {"straight", quiet}});
-  three(b.add("tire_lag-three_small-lane_change-bend-straight", "in_list", "tire_lag", "", "0.35 m", "lane_change",
+  withRuns(b.add("tire_lag-three_small-lane_change-bend-straight", "in_list", "tire_lag", "", "0.35 m", "lane_change",
               {"tire.front.model=lugre_distributed", "tire.rear.model=lugre_distributed", "tire.front.lugre.bristles=40",
                "tire.rear.lugre.bristles=40", "tire.front.relaxation_length=0.35", "tire.rear.relaxation_length=0.35"},
               {}),
         {{"bend"}, {"straight", quiet}});
-  three(b.add("sensor-yaw_rate_offset-three_small-lane_change-bend-sinusoid", "in_list", "sensor_offset", "yaw_rate",
+  withRuns(b.add("sensor-yaw_rate_offset-three_small-lane_change-bend-sinusoid", "in_list", "sensor_offset", "yaw_rate",
               "0.0015 rad/s", "lane_change", {"sensors.yaw_rate_bias=0.0015"}, {}),
         {{"bend"}, {"sinusoid"}});
-  three(b.add("sensor-heading_mount-three_small-bend-sinusoid-straight", "in_list", "sensor_offset", "heading",
+  withRuns(b.add("sensor-heading_mount-three_small-bend-sinusoid-straight", "in_list", "sensor_offset", "heading",
               "0.25 deg", "bend", {"sensors.pose_bias_psi=" + num(0.25 * deg)}, {}),
         {{"sinusoid"}, {"straight", quiet}});
-  three(b.add("steering_friction-three_small-sinusoid-bend-straight", "in_list", "steering_friction", "",
+  withRuns(b.add("steering_friction-three_small-sinusoid-bend-straight", "in_list", "steering_friction", "",
               "LuGre 1.5 / 2.2 N m", "sinusoid", lugreFriction(1.5, 2.2), {}),
         {{"bend"}, {"straight", quiet}});
-  three(b.add("inertia-three_small-lane_change-sinusoid-straight", "in_list", "inertia", "",
+  withRuns(b.add("inertia-three_small-lane_change-sinusoid-straight", "in_list", "inertia", "",
               "J x1.1, m x1.04, G 2 cm back", "lane_change", bootLoad(1.1, 1.04, 0.02), {}),
         {{"sinusoid"}, {"straight", quiet}});
-  three(b.add("actuation_delay-three_small-sinusoid-lane_change-bend", "in_list", "actuation_delay", "", "+1 ms",
+  withRuns(b.add("actuation_delay-three_small-sinusoid-lane_change-bend", "in_list", "actuation_delay", "", "+1 ms",
               "sinusoid", {"delays.torque_to_plant=0.001"}, {}),
         {{"lane_change"}, {"bend"}});
-  three(b.add("lateral_disturbance-three_small-bend-lane_change-straight", "in_list", "lateral_disturbance", "",
+  withRuns(b.add("lateral_disturbance-three_small-bend-lane_change-straight", "in_list", "lateral_disturbance", "",
               "200 N", "bend", crosswind(200.0, 0.2), {}),
         {{"lane_change"}, {"straight", quiet}});
 }
