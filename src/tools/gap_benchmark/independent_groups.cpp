@@ -134,6 +134,13 @@ std::vector<std::string> lugreFriction(double coulomb, double breakaway) {
           "steering.breakaway_friction=" + num(breakaway), "steering.friction_velocity=0.02",
           "steering.friction_stiffness=2e4"};
 }
+/// A distributed LuGre tread (Deur eq 22, 40 bristles) with carcass relaxation of `length` [m], against the
+/// lumped nominal.
+std::vector<std::string> distributedTread(double length) {
+  return {"tire.front.model=lugre_distributed", "tire.rear.model=lugre_distributed", "tire.front.lugre.bristles=40",
+          "tire.rear.lugre.bristles=40", "tire.front.relaxation_length=" + num(length),
+          "tire.rear.relaxation_length=" + num(length)};
+}
 /// Load in the boot: mass and yaw inertia up, the centre of gravity moved back (Table 1 car).
 std::vector<std::string> bootLoad(double yaw_factor, double mass_factor, double cg_back) {
   return {"vehicle.yaw_inertia=" + num(1343.0 * yaw_factor), "vehicle.mass=" + num(1100.0 * mass_factor),
@@ -312,8 +319,7 @@ void oneRunWeak(GroupBuilder& b) {
   // A relaxation length of 0.9 m (the tire case) in the distributed tread, strong on a lane change,
   // weak on the quiet road.
   pair("tire_lag-weak-lane_change-straight", "in_list", "tire_lag", "0.9 m", "lane_change",
-       {"tire.front.model=lugre_distributed", "tire.rear.model=lugre_distributed", "tire.front.lugre.bristles=40",
-        "tire.rear.lugre.bristles=40", "tire.front.relaxation_length=0.9", "tire.rear.relaxation_length=0.9"},
+       distributedTread(0.9),
        {}, "straight", quiet);
   // Nothing wrong, the same pairs of roads.
   pair("none-weak-sinusoid-straight", "none", "none", "", "sinusoid", {}, {}, "straight", quiet);
@@ -438,8 +444,7 @@ void threeRuns(GroupBuilder& b) {
               "x0.85 / x0.9", "sinusoid", {"tire.front.lateral_stiffness=1.7e6", "tire.rear.lateral_stiffness=1.8e6"}, {}),
         {{"lane_change"}, {"straight", quiet}});
   withRuns(b.add("tire_lag-three-lane_change-bend-straight", "in_list", "tire_lag", "", "0.7 m", "lane_change",
-              {"tire.front.model=lugre_distributed", "tire.rear.model=lugre_distributed", "tire.front.lugre.bristles=40",
-               "tire.rear.lugre.bristles=40", "tire.front.relaxation_length=0.7", "tire.rear.relaxation_length=0.7"},
+              distributedTread(0.7),
               {}),
         {{"bend"}, {"straight", quiet}});
   withRuns(b.add("sensor-yaw_rate_offset-three-lane_change-bend-sinusoid", "in_list", "sensor_offset", "yaw_rate",
@@ -479,8 +484,7 @@ void threeRunsSmall(GroupBuilder& b) {
               {}),
         {{"lane_change"}, {"straight", quiet}});
   withRuns(b.add("tire_lag-three_small-lane_change-bend-straight", "in_list", "tire_lag", "", "0.35 m", "lane_change",
-              {"tire.front.model=lugre_distributed", "tire.rear.model=lugre_distributed", "tire.front.lugre.bristles=40",
-               "tire.rear.lugre.bristles=40", "tire.front.relaxation_length=0.35", "tire.rear.relaxation_length=0.35"},
+              distributedTread(0.35),
               {}),
         {{"bend"}, {"straight", quiet}});
   withRuns(b.add("sensor-yaw_rate_offset-three_small-lane_change-bend-sinusoid", "in_list", "sensor_offset", "yaw_rate",
