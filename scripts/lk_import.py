@@ -335,11 +335,16 @@ def sign_agreement(a, b):
 
 def repair_course_spikes(course_deg, report):
     """Unwrapped course [deg]. A sample that differs from both neighbours by more than 30 deg while they agree
-    within 30 deg is an export's interpolation across +-180 (e.g. 178.4, 89.4, -179.5): it takes their mean."""
-    c = np.degrees(np.unwrap(np.radians(course_deg)))
+    within 30 deg is an export's interpolation across +-180 (e.g. 178.4, 89.4, -179.5): it takes their mean.
+    So is a sample whose neighbours, as exported, lie on either side of +-180 and which lies between them the
+    long way round, however little it differs from them (179.07, 171.01, -178.86: no course on the short arc
+    between the neighbours takes such a value)."""
+    raw = np.asarray(course_deg, dtype=float)
+    c = np.degrees(np.unwrap(np.radians(raw)))
     for k in range(1, len(c) - 1):
         before, after = c[k] - c[k - 1], c[k + 1] - c[k]
-        if abs(before) > 30.0 and abs(after) > 30.0 and abs(c[k + 1] - c[k - 1]) < 30.0:
+        across = abs(raw[k + 1] - raw[k - 1]) > 180.0 and min(raw[k - 1], raw[k + 1]) < raw[k] < max(raw[k - 1], raw[k + 1])
+        if across or (abs(before) > 30.0 and abs(after) > 30.0 and abs(c[k + 1] - c[k - 1]) < 30.0):
             report("  course sample %d: %.4f deg replaced by its neighbours' mean (an interpolation across "
                    "+-180 deg)" % (k, course_deg[k]))
             c[k] = 0.5 * (c[k - 1] + c[k + 1])

@@ -91,7 +91,7 @@ def aim_csv(rows, names=("Time", "GPS Speed", "GPS Heading", "GPS Latitude", "GP
     return "\n".join(head + [",".join('"%s"' % v for v in r) for r in rows]) + "\n"
 
 
-def right_circle(v=20.0, radius=100.0, course0=170.0, n=200, dt=0.05, glitch=True):
+def right_circle(v=20.0, radius=100.0, course0=170.0, n=200, dt=0.05, glitch=True, glitch_weight=None):
     """AiM rows of a car on a right-hand circle (AiM signs: yaw rate, steering and LateralAcc positive to the
     right), the course starting at course0 [deg clockwise from north] so that it crosses 180 deg; with
     glitch, the sample after the crossing holds what an export interpolating across the wrap gives."""
@@ -111,7 +111,11 @@ def right_circle(v=20.0, radius=100.0, course0=170.0, n=200, dt=0.05, glitch=Tru
         nn += v * dt * math.cos(c + 0.5 * v / radius * dt)
     if glitch:
         k = next(i for i in range(1, n) if float(rows[i][2]) < 0.0)
-        rows[k][2] = "%.4f" % (0.5 * (float(rows[k - 1][2]) + 0.0))  # half way to 0: across the wrap
+        if glitch_weight is None:
+            rows[k][2] = "%.4f" % (0.5 * (float(rows[k - 1][2]) + 0.0))  # half way to 0: across the wrap
+        else:  # a little of the way from the sample before to the sample after, the long way round
+            before, after = float(rows[k - 1][2]), float(rows[k + 1][2])
+            rows[k][2] = "%.4f" % ((1.0 - glitch_weight) * before + glitch_weight * after)
     return rows
 
 
@@ -143,6 +147,15 @@ class AimImport(unittest.TestCase):
         self.assertLess(abs(out["y"][1]), 0.05)
         # The positions lie on the circle: radius 100 m about (0, -100) in the local frame (a right turn).
         np.testing.assert_allclose(np.hypot(out["x"], out["y"] + 100.0), 100.0, atol=0.1)
+
+    def test_an_interpolation_a_little_way_across_the_wrap_is_repaired_too(self):
+        # Fuji lap 6's course: 179.07, 171.01, -178.86 (2 % of the way round the long arc, 9 deg off).
+        _, out, report = self.run_import(aim_csv(right_circle(glitch_weight=0.025)))
+        self.assertIn("replaced by its neighbours' mean", report)
+        self.assertLess(np.max(np.abs(np.diff(out["psi"]))), 0.02)
+        # Without a glitch nothing is replaced, though the course crosses the wrap.
+        _, _, clean = self.run_import(aim_csv(right_circle(glitch=False)))
+        self.assertNotIn("replaced", clean)
 
     def test_the_cut_restarts_time_at_zero(self):
         _, out, _ = self.run_import(aim_csv(right_circle(glitch=False)), start=102.0, end=104.0)
