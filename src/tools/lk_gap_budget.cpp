@@ -58,8 +58,10 @@ DiagnosisBudget estimateDiagnosisBudget(const std::vector<GapRun>& training, con
   const std::size_t runs = training.size() + heldout.size();
   if (options.two_folds && runs >= 3) {
     b.seconds *= static_cast<double>(runs);
+    b.folds = "each of the " + std::to_string(runs) + " runs held out in turn";
   } else if (options.two_folds && options.every_fold) {
     b.seconds *= 2.0;
+    b.folds = "each side held out in turn";
   }
   b.bytes = kBaseBytes + kBytesPerRow * b.rows * std::max(1.0, threads / 2.0);
   return b;
@@ -73,8 +75,9 @@ void checkDiagnosisBudget(const DiagnosisBudget& b, double budget_hours, std::os
   };
   const std::string what = b.largest + ": " + g(b.largest_rows) + " rows over " + g(b.largest_span) +
                            " s (a sample every " + g(b.largest_interval) + " s)";
-  const std::string estimate = "the diagnosis would take about " + formatDuration(b.seconds) + " and " +
-                               formatBytes(b.bytes) + " of memory";
+  const std::string estimate = "the diagnosis would take about " + formatDuration(b.seconds) +
+                               (b.folds.empty() ? "" : " (" + b.folds + ")") + " and " + formatBytes(b.bytes) +
+                               " of memory";
   // A car's log samples at 10 Hz or faster: slower suggests a time column in other units than seconds.
   const std::string units = b.largest_interval > 0.1 ? "; a sample every " + g(b.largest_interval) +
                                                            " s is slower than a car's log (10 Hz to 1 kHz): is the time "

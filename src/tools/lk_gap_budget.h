@@ -24,6 +24,7 @@ struct DiagnosisBudget {
   double bytes = 0.0;            ///< estimated peak memory
   std::string largest;           ///< the log that costs most, for messages
   double largest_rows = 0.0, largest_span = 0.0, largest_interval = 0.0;
+  std::string folds;             ///< the folds the estimate counts ("" for one), for messages
 };
 
 DiagnosisBudget estimateDiagnosisBudget(const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,

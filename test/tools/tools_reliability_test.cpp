@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -214,6 +215,38 @@ TEST(LkGapFiles, ALogBeyondTheTimeBudgetIsRefusedWithAnEstimate) {
   EXPECT_REFUSED(tool("lk_gap", {"--config", kConfig, "--log", ms, "--report", (dir / "rep").string()}), 4,
                  "more than --time-budget 1 h; a sample every 10 s is slower than a car's log");
   EXPECT_LT(secondsSince(start), 10.0);
+  EXPECT_FALSE(fs::exists(dir / "rep"));
+}
+
+TEST(LkGapFiles, TheTimeEstimateCountsEveryRunHeldOutInTurn) {
+  // Three runs: each held out in turn, a diagnosis of nearly all the data apiece (fold_pooling.h), three
+  // times the estimate of the split as made (--one-fold). The same time-in-ms logs as above, refused both
+  // ways, so nothing runs.
+  const fs::path dir = freshDir("lk_tools_budget_folds");
+  std::vector<std::string> logs;
+  for (const std::string name : {"a", "b", "c"}) {
+    logs.push_back((dir / (name + ".csv")).string());
+    std::ofstream out(logs.back());
+    out << "t,x,y,psi,yaw_rate,delta,delta_des,torque\n";
+    for (int i = 0; i < 4000; ++i) out << 10 * i << "," << 0.15 * i << ",1,0,0,0,0,0\n";
+  }
+  std::vector<std::string> args{"--config", kConfig, "--report", (dir / "rep").string()};
+  for (const std::string& log : logs) args.insert(args.end(), {"--log", log});
+  const ChildResult three = tool("lk_gap", args);
+  args.push_back("--one-fold");
+  const ChildResult one = tool("lk_gap", args);
+  EXPECT_REFUSED(three, 4, "(each of the 3 runs held out in turn)");
+  EXPECT_REFUSED(one, 4, "the diagnosis would take about");
+  EXPECT_EQ(one.error_output.find("held out in turn"), std::string::npos) << one.error_output;
+  // "about 16 h 15 min" against "about 5 h 25 min": minutes from the "H h M min" form.
+  auto minutes = [](const std::string& text) {
+    const std::size_t at = text.find("would take about ");
+    int h = -1, m = -1;
+    if (at != std::string::npos) std::sscanf(text.c_str() + at, "would take about %d h %d min", &h, &m);
+    return 60.0 * h + m;
+  };
+  ASSERT_GT(minutes(one.error_output), 60.0) << one.error_output;
+  EXPECT_NEAR(minutes(three.error_output) / minutes(one.error_output), 3.0, 0.02);
   EXPECT_FALSE(fs::exists(dir / "rep"));
 }
 
