@@ -57,11 +57,15 @@ std::string whyFolds(const GapDetection& detection, const std::string& held_out_
   if (detection.heldout.detected) {
     why << "the held-out data alone detect the gap (p = " << briefNumber(detection.heldout.p_value) << "), and "
         << held_out_in_turn;
-  } else {
+  } else if (detection.pooled.detected) {
     why << "the held-out data alone do not detect the gap (p = " << briefNumber(detection.heldout.p_value)
         << ", training p = " << briefNumber(detection.training.p_value) << "); both sides together do (p = "
         << briefNumber(detection.pooled.p_value) << " among " << detection.draws << " noise-only draws), so "
         << held_out_in_turn;
+  } else {  // a gap on the training side alone: the folds ran, the verdict says what the held-out data do not confirm
+    why << "the training data alone show a gap (p = " << briefNumber(detection.training.p_value)
+        << "; held-out p = " << briefNumber(detection.heldout.p_value) << ", both sides together p = "
+        << briefNumber(detection.pooled.p_value) << "), and " << held_out_in_turn;
   }
   return why.str();
 }

@@ -258,6 +258,31 @@ TEST(FoldPooling, TheRunsFoldsPoolEachCandidatesEvidenceAndGaps) {
   EXPECT_FALSE(with_cs.back().closed_loop_bounded);
 }
 
+TEST(FoldPooling, TheRunsFoldsSayWhichTestMadeThemRun) {
+  std::vector<GapFold> folds(3, foldNaming("inertia", 0.02, 0.01));
+  for (std::size_t k = 0; k < 3; ++k) folds[k].heldout = {"run" + std::to_string(k + 1) + ".csv"};
+  GapDetection d;
+  d.draws = 19;
+  d.heldout.p_value = 0.3;
+  d.training.p_value = 0.05;
+  d.training.detected = true;
+  d.pooled.p_value = 0.1;
+  GapVerdict v = named("inertia");
+  describeRunFolds(&v, d, folds);  // the training side alone
+  EXPECT_NE(v.reason.find("the training data alone show a gap"), std::string::npos) << v.reason;
+  EXPECT_EQ(v.reason.find("both sides together do"), std::string::npos) << v.reason;
+  EXPECT_NE(v.reason.find("fold 3 (run3.csv held out) inertia"), std::string::npos) << v.reason;
+  d.pooled.detected = true;
+  GapVerdict pooled = named("inertia");
+  describeRunFolds(&pooled, d, folds);
+  EXPECT_NE(pooled.reason.find("both sides together do"), std::string::npos) << pooled.reason;
+  d.heldout.detected = true;
+  GapVerdict held = named("inertia");
+  describeRunFolds(&held, d, folds);
+  EXPECT_NE(held.reason.find("the held-out data alone detect the gap"), std::string::npos) << held.reason;
+  EXPECT_NE(held.reason.find("each of the 3 runs was held out in turn"), std::string::npos) << held.reason;
+}
+
 TEST(FoldPooling, ThreeRunsOfAGyroBiasAreEachHeldOutAndNamedOnTheirSummedEvidence) {
   // Three runs of the same lane change, each with its own noise, a gyro reading 0.0025 rad/s high. The
   // split as made (whole runs: the first and third train, the second is held out) fits the bias at
