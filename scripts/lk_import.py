@@ -380,6 +380,12 @@ def import_aim(path, start=None, end=None, report=print):
     if keep.sum() < 10:
         raise InputError("%s: %d samples between --start %s and --end %s" % (path, keep.sum(), start, end))
     ch = {k: v[keep] for k, v in ch.items()}
+    # A channel the conversion reads must be finite: one NaN course would make every later psi NaN (unwrapped).
+    for key, (name, _) in AIM_CHANNELS.items():
+        bad = np.flatnonzero(~np.isfinite(ch[key]))
+        if bad.size:
+            raise InputError('%s: channel "%s" is not a finite number at Time %s (%d samples); cut the log around it '
+                             "with --start / --end" % (path, name, ch["time"][bad[0]], bad.size))
     out = {"t": ch["time"] - ch["time"][0]}
     report("%s: %s, %s, %s; %d samples at %.1f Hz, log time %.3f-%.3f s" % (
         path, (meta.get("Vehicle") or ["?"])[0], (meta.get("Session") or ["?"])[0],

@@ -157,6 +157,15 @@ class AimImport(unittest.TestCase):
         _, _, clean = self.run_import(aim_csv(right_circle(glitch=False)))
         self.assertNotIn("replaced", clean)
 
+    def test_a_channel_that_is_not_finite_is_refused_naming_it(self):
+        rows = right_circle(glitch=False)
+        rows[50][2] = "nan"  # the course
+        with self.assertRaisesRegex(lk_import.InputError, r'channel "GPS Heading" is not a finite number at Time 102.5'):
+            self.run_import(aim_csv(rows))
+        # Outside the cut it does not matter.
+        _, out, _ = self.run_import(aim_csv(rows), start=103.0)
+        self.assertTrue(np.all(np.isfinite(out["psi"])))
+
     def test_the_cut_restarts_time_at_zero(self):
         _, out, _ = self.run_import(aim_csv(right_circle(glitch=False)), start=102.0, end=104.0)
         self.assertEqual(len(out["t"]), 41)

@@ -371,17 +371,8 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
       for (const CandidateEffect* c : candidates) {
         if (c->name == ranked.effect && c->form == primaryForm(ranked.form)) effect = c;
       }
-      const double before = context.gap_before;
-      if (effect == nullptr || before <= 0.0) return p;
-      double untouched = 0.0;
-      for (const auto& excess : untouched_excess) {
-        for (const auto& [name, e] : excess) {
-          if (std::find(effect->subsystems.begin(), effect->subsystems.end(), name) == effect->subsystems.end()) {
-            untouched += e * e;
-          }
-        }
-      }
-      p.untouched_share = untouched / (before * before);
+      if (effect == nullptr || context.gap_before <= 0.0) return p;
+      p.untouched_share = pooledUntouchedShare(effect->subsystems, untouched_excess, context.gap_before);
       judgePartial(&p, ranked.effect, options);
       return p;
     };

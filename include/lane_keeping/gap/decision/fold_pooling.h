@@ -22,6 +22,7 @@
 /// had evidence -2864 on one of three runs of the same manoeuvre (a second of a steering reversal where
 /// the chassis replay's lateral-velocity estimate, 0.015 m/s further off, doubles the steering replay's
 /// residual) and +16,490 on another. Summed over the runs, the evidence is what cross-validation measures.
+#include <map>
 #include <string>
 #include <vector>
 
@@ -55,6 +56,12 @@ void poolFolds(GapVerdict* verdict, const GapDetection& detection, const std::ve
 std::vector<RankedEffect> pooledRanking(const std::vector<RankedEffect>& first,
                                         const std::vector<std::vector<RankedEffect>>& folds,
                                         std::vector<std::string>* notes);
+
+/// What a candidate changing `changes` leaves, pooled over every run held out once: the nominal's net excess^2
+/// in the other subsystems summed over the folds' held-out data (`excess`, one map per fold: subsystem -> net
+/// excess), as a share of the pooled gap^2 `gap_before` (partial_explanation.h's untouched share).
+double pooledUntouchedShare(const std::vector<std::string>& changes,
+                            const std::vector<std::map<std::string, double>>& excess, double gap_before);
 
 /// The reason of a verdict decided on the pooled ranking of every run held out once: what each fold
 /// named, before the verdict's own reason.

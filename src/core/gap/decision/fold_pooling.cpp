@@ -132,6 +132,18 @@ std::vector<RankedEffect> pooledRanking(const std::vector<RankedEffect>& first,
   return pooled;
 }
 
+double pooledUntouchedShare(const std::vector<std::string>& changes,
+                            const std::vector<std::map<std::string, double>>& excess, double gap_before) {
+  if (gap_before <= 0.0) return 0.0;
+  double untouched = 0.0;
+  for (const auto& fold : excess) {
+    for (const auto& [name, e] : fold) {
+      if (std::find(changes.begin(), changes.end(), name) == changes.end()) untouched += e * e;
+    }
+  }
+  return untouched / (gap_before * gap_before);
+}
+
 void describeRunFolds(GapVerdict* verdict, const GapDetection& detection, const std::vector<GapFold>& folds) {
   std::ostringstream why;
   why << whyFolds(detection, "each of the " + std::to_string(folds.size()) +

@@ -258,6 +258,16 @@ TEST(FoldPooling, TheRunsFoldsPoolEachCandidatesEvidenceAndGaps) {
   EXPECT_FALSE(with_cs.back().closed_loop_bounded);
 }
 
+TEST(FoldPooling, TheUntouchedShareSumsEveryRunsOtherSubsystems) {
+  // A delay changes the steering replay; two folds' held-out chassis excess 0.003 and 0.001, steering 0.01
+  // and 0.02: untouched (0.003^2 + 0.001^2) / 0.05^2 = 0.4 %.
+  const std::vector<std::map<std::string, double>> excess = {{{"chassis", 0.003}, {"steering", 0.01}},
+                                                             {{"chassis", 0.001}, {"steering", 0.02}}};
+  EXPECT_NEAR(pooledUntouchedShare({"steering"}, excess, 0.05), 1e-5 / 2.5e-3, 1e-12);
+  EXPECT_DOUBLE_EQ(pooledUntouchedShare({"steering", "chassis"}, excess, 0.05), 0.0);
+  EXPECT_DOUBLE_EQ(pooledUntouchedShare({"steering"}, excess, 0.0), 0.0);  // no gap: nothing to share
+}
+
 TEST(FoldPooling, TheRunsFoldsSayWhichTestMadeThemRun) {
   std::vector<GapFold> folds(3, foldNaming("inertia", 0.02, 0.01));
   for (std::size_t k = 0; k < 3; ++k) folds[k].heldout = {"run" + std::to_string(k + 1) + ".csv"};
