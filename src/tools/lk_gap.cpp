@@ -64,6 +64,9 @@ void usage(std::ostream& out) {
          "             or more, hold each run out in turn and decide on the held-out evidence summed over them)\n"
          "  --every-fold hold every run (or side) out in turn even where the held-out test alone detects the gap,\n"
          "             and list each fold in the report\n"
+         "  --measured-corrections   correct the gyro scale and drift the input checks measure against psi and\n"
+         "             ay / V before the fits, and name them (default: reported, with a note where the verdict\n"
+         "             does not hold them; the log read as it is)\n"
          "  --candidate-forms-only   do not fit the other forms of the leader and of further effects\n"
          "             (LuGre kingpin friction for steering_friction, a soft saturation for torque_limit,\n"
          "             the contact patch's length for cornering_stiffness; docs/gap.md, \"How far\")\n"
@@ -139,6 +142,7 @@ Arguments parseArguments(int argc, char** argv) {
     else if (arg == "--time-budget") a.time_budget_hours = numberOption(arg, value(), 0.0, 1e4, "h");
     else if (arg == "--one-fold") a.options.two_folds = false;
     else if (arg == "--every-fold") a.options.every_fold = true;
+    else if (arg == "--measured-corrections") a.options.correct_measured_sensor_errors = true;
     else if (arg == "--candidate-forms-only") a.options.leader_forms = false;
     else if (arg == "--no-plots") a.plots = false;
     else if (arg == "--quiet") a.quiet = true;

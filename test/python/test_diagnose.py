@@ -106,6 +106,34 @@ def test_every_fold_is_lk_gaps(lk, logs):
     assert without_wall_times(got) == without_wall_times(expected)
 
 
+def test_measured_corrections_is_lk_gaps(lk, tmp_path):
+    """measured_corrections is lk_gap's --measured-corrections: a gyro drifting 0.008 rad/s from the heading is
+    measured before any model, corrected and named, the same from Python as from the tool."""
+    log, scenario = str(tmp_path / "bias.csv"), str(tmp_path / "bias.yaml")
+    with open(scenario, "w") as f:
+        json.dump({"simulation": {"duration": 12, "log_rate": 100}}, f)
+    run_tool("lk_simulate", "--config", NOMINAL, "--config", scenario, "--set", "sensors.yaw_rate_bias=0.008",
+             "--out", log, "--quiet")
+    report_dir = str(tmp_path / "report")
+    args = ["--effects", "sensor_offset,lateral_disturbance", "--threads", "1", "--no-plots", "--quiet"]
+    code, _, stderr = run_tool("lk_gap", "--config", NOMINAL, "--log", log, "--scenario", scenario,
+                               "--measured-corrections", "--report", report_dir, *args, check=False)
+    assert code == 0, stderr
+    with open(os.path.join(report_dir, "report.json")) as f:
+        expected = json.load(f)
+    first = expected["verdict"]["effects"][0]
+    assert first["measured"] and first["effect"] == "sensor_offset" and first["form"] == "yaw_rate"
+    assert abs(first["params"]["bias"] - 0.008) < 0.0005
+    got = lk.diagnose(NOMINAL, [{"log": log, "scenario": scenario}], effects=["sensor_offset", "lateral_disturbance"],
+                      threads=1, measured_corrections=True)
+    assert without_wall_times(got) == without_wall_times(expected)
+    # Off (the default): the finding is an input check, and no effect is "measured".
+    off = lk.diagnose(NOMINAL, [{"log": log, "scenario": scenario}], effects=["sensor_offset", "lateral_disturbance"],
+                      threads=1)
+    assert any(c["kind"] == "bias" and c["channel"] == "yaw_rate" for c in off["input_checks"])
+    assert not any(e.get("measured") for e in off["verdict"]["effects"])
+
+
 def test_a_frames_bad_rows_are_named(lk, logs):
     _, runs = logs
     train = runs["train"][0]

@@ -64,6 +64,13 @@ struct DiagnosisOptions {
   /// Hold every run (or side) out in turn even where the held-out test alone detects the gap: the folds
   /// decide as they do on the pooled test, and the report lists each (lk_gap --every-fold).
   bool every_fold = false;
+  /// Correct the sensor errors the input checks measure before any model (log/heading_agreement.h: the gyro's
+  /// scale where the course and ay / V outvote it, its drift from psi) before the fits, and name them as the
+  /// verdict's effects (decision/measured_sensor_errors.h; lk_gap --measured-corrections). Off by default: they
+  /// are reported (input checks, and a note where the verdict does not hold them) and the log read as it is.
+  /// Corrected, the race car's gyro (0.84) left turn 1 to a side force of 3.2 kN (0.67 g), which no candidate
+  /// but a physical stand-in can take (docs/real_logs/super_fj_fuji.md): the engineer decides.
+  bool correct_measured_sensor_errors = false;
   /// Fit the leader's other forms (LuGre kingpin friction, a soft saturation) and let the one that fits
   /// better stand for it (leader_forms.h; issue 47, kind 7).
   bool leader_forms = true;

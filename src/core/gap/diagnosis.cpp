@@ -7,11 +7,13 @@
 #include <set>
 #include <string>
 
+#include "lane_keeping/common/brief_number.h"
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/parallel_for.h"
 #include "lane_keeping/gap/decision/fold_pooling.h"
 #include "lane_keeping/gap/decision/forward_selection.h"
 #include "lane_keeping/gap/decision/knock_on.h"
+#include "lane_keeping/gap/decision/measured_sensor_errors.h"
 #include "lane_keeping/gap/decision/modal_evidence.h"
 #include "lane_keeping/gap/decision/how_far.h"
 #include "lane_keeping/gap/decision/noise_null.h"
@@ -66,8 +68,59 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
                      options, artifacts);
 }
 
+namespace {
+GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRun>& training,
+                               const std::vector<GapRun>& heldout, const DiagnosisOptions& options,
+                               DiagnosisArtifacts* artifacts);
+}  // namespace
+
 GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
                       const DiagnosisOptions& options, DiagnosisArtifacts* artifacts) {
+  if (training.empty()) throw InputError("gap diagnosis: no training log given");
+  // ---- 0. Sensor errors measured before any model, corrected before the fits (measured_sensor_errors.h).
+  //      Once: the folds and the diagnosis from an onset run on the corrected runs with it off.
+  DiagnosisOptions inner = options;
+  inner.correct_measured_sensor_errors = false;
+  // Sensor errors measured before any model that the verdict does not name are said (once: a diagnosis from
+  // an onset is a diagnosis inside this one).
+  auto said = [](GapReport report) {
+    for (std::string& note : measuredSensorErrorNotes(report)) {
+      if (std::find(report.notes.begin(), report.notes.end(), note) == report.notes.end()) report.notes.push_back(note);
+    }
+    return report;
+  };
+  if (!options.correct_measured_sensor_errors) return said(diagnoseAsConfigured(nominal, training, heldout, inner, artifacts));
+  std::vector<const GapLog*> logs;
+  for (const auto* runs : {&training, &heldout}) {
+    for (const GapRun& run : *runs) logs.push_back(&run.log);
+  }
+  const std::vector<MeasuredSensorError> measured = measuredSensorErrors(logs);
+  if (measured.empty()) return said(diagnoseAsConfigured(nominal, training, heldout, inner, artifacts));
+  nominal.validate();
+  const ConfigChange correction = diagnosis::correctionOf(measured);
+  if (options.progress) {
+    options.progress("correcting the sensor errors measured before any model (" + measured.front().key + " = " +
+                     briefNumber(measured.front().value) + (measured.size() > 1 ? ", ..." : "") + ")");
+  }
+  // The held-out gap as logged and corrected, on the nominal's noise-only reference.
+  const std::vector<double> gaps = heldoutGaps(training, heldout, {correction}, inner);
+  SimConfig corrected_nominal = nominal;
+  correction(corrected_nominal);
+  auto correctedRuns = [&](const std::vector<GapRun>& runs) {
+    std::vector<GapRun> out = runs;
+    for (GapRun& run : out) correction(run.config);
+    return out;
+  };
+  GapReport report =
+      diagnoseAsConfigured(corrected_nominal, correctedRuns(training), correctedRuns(heldout), inner, artifacts);
+  diagnosis::withMeasuredErrors(&report, measured, gaps[0], gaps[1]);
+  return said(std::move(report));
+}
+
+namespace {
+GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRun>& training,
+                               const std::vector<GapRun>& heldout, const DiagnosisOptions& options,
+                               DiagnosisArtifacts* artifacts) {
   if (training.empty()) throw InputError("gap diagnosis: no training log given");
   nominal.validate();
   // Between 1 and 18 draws at 5 % no p-value reaches the test's level: every gap would be "nothing to
@@ -522,5 +575,6 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   say("done");
   return report;
 }
+}  // namespace
 
 }  // namespace lane_keeping

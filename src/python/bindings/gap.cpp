@@ -83,6 +83,9 @@ py::tuple diagnose(py::handle nominal_layers, py::sequence training_runs, py::se
   options.effects = options_in["effects"].cast<std::vector<std::string>>();
   options.two_folds = options_in["two_folds"].cast<bool>();
   if (options_in.contains("every_fold")) options.every_fold = options_in["every_fold"].cast<bool>();
+  if (options_in.contains("measured_corrections")) {
+    options.correct_measured_sensor_errors = options_in["measured_corrections"].cast<bool>();
+  }
   options.leader_forms = options_in["leader_forms"].cast<bool>();
   if (options.noise_reference_draws < 0 || options.noise_reference_draws > 100) {
     throw ConfigError("noise_reference_draws must be between 0 and 100");

@@ -107,6 +107,9 @@ struct VerdictEffect {
   double gap_after = 0.0;   ///< held-out gap with it and every effect before it
   double evidence = 0.0;    ///< its held-out evidence over the effects before it
   bool sensor = false;      ///< a sensor or data error, not physics
+  /// Measured before any model by the input checks (log/heading_agreement.h) and corrected before the fits
+  /// (decision/measured_sensor_errors.h): no held-out evidence (NaN), its share the gap its correction removes.
+  bool measured = false;
   /// Candidates that, fitted in its place (on top of the same effects before it), remove nearly as much
   /// (within 10 points of shrink): the logs cannot tell them apart from it.
   std::vector<std::string> confusable_with;

@@ -8,6 +8,7 @@
 #include <cstdio>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/gap/log/heading_agreement.h"
 #include "lane_keeping/gap/log/log_signals.h"
 #include "lane_keeping/tire/tire.h"
 
@@ -100,6 +101,7 @@ class Checker {
     stuckChannels();
     units();
     speed();
+    headings();
     return out_;
   }
 
@@ -468,6 +470,15 @@ class Checker {
                ratio, unit));
     speed_.assign(log_.size(), std::max(1.0, std::fabs(config_.vehicle.speed)));
     typical_speed_ = speed_.front();
+  }
+
+  // ---- the gyro, psi and ay / V laid over each other (heading_agreement.h) -------------------------------
+  void headings() {
+    // A channel already found stuck or in another unit is what is wrong with it; its scale means nothing.
+    for (const char* channel : {"yaw_rate", "psi", "ay", "v"}) {
+      if (flagged(channel)) return;
+    }
+    for (InputCheck& c : headingAgreementChecks(log_)) out_.push_back(std::move(c));
   }
 
   // ---- speed -----------------------------------------------------------------------------------------

@@ -21,9 +21,9 @@
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
 //                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked"}],
 //     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason",
-//                  "basis" ("replays" or "modal": named on the loop's modes, modal_evidence.h), "confusable_with": [..],
+//                  "basis" ("replays", "modal": named on the loop's modes, modal_evidence.h, or "measured": a sensor error the input checks measured, decision/measured_sensor_errors.h), "confusable_with": [..],
 //                  "effects": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {}, "share", "gap_after",
-//                               "evidence", "sensor", "confusable_with": [..]}], "combined_gap_after", "combined_shrink",
+//                               "evidence", "sensor", "measured" (only where true), "confusable_with": [..]}], "combined_gap_after", "combined_shrink",
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
 //                  (only when a candidate explains part of the gap) },
 //     "how_far": { "before", "after", "shrink", "noise_floor", "net_before", "net_after", "net_shrink" (the closed-loop
@@ -165,6 +165,7 @@ OrderedJson toJson(const GapVerdict& v) {
     j["gap_after"] = number(e.gap_after);
     j["evidence"] = number(e.evidence);
     j["sensor"] = e.sensor;
+    if (e.measured) j["measured"] = true;  // only where true: earlier reports stay as they were
     j["confusable_with"] = e.confusable_with;
     out["effects"].push_back(j);
   }
@@ -552,6 +553,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "gap_after", &s.gap_after);
     r.get(e, p, "evidence", &s.evidence);
     r.get(e, p, "sensor", &s.sensor);
+    r.get(e, p, "measured", &s.measured);  // absent: fitted
     r.get(e, p, "confusable_with", &s.confusable_with);
     rep.verdict.effects.push_back(s);
   });

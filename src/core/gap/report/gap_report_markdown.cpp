@@ -112,6 +112,10 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
     out << "- named on: the steering loop's modes (its roots against the logged ringing), not on the replays: the "
            "held-out gap is left as it was\n";
   }
+  if (v.basis == "measured") {
+    out << "- named on: the input checks' measurement before any model (the gyro laid over psi and ay / V), "
+           "corrected before the fits; the gap before is the logs' as they were\n";
+  }
   if (!v.reason.empty()) out << "- reason: " << v.reason << "\n";
   out << "- confusable with: " << (v.confusable_with.empty() ? "none reported" : join(v.confusable_with, ", "))
       << "\n";
@@ -151,7 +155,7 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
     out << "- effects named (each fitted on top of those before it, its share of the held-out gap):\n";
     for (const VerdictEffect& e : v.effects) {
       out << "  - " << e.effect << (e.form.empty() ? "" : " (" + e.form + ")") << (e.sensor ? " [sensor error]" : "")
-          << ": " << percent(e.share);
+          << (e.measured ? " [measured before any model]" : "") << ": " << percent(e.share);
       for (const auto& [name, value] : e.params) out << ", " << name << " " << num(value, "%.4g");
       if (!e.confusable_with.empty()) out << " (confusable with: " << join(e.confusable_with, ", ") << ")";
       out << "\n";
