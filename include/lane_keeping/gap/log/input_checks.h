@@ -27,7 +27,7 @@ namespace lane_keeping {
 struct InputCheck {
   std::string log;      ///< the log's source
   std::string channel;  ///< the schema column ("t" for the time axis)
-  std::string kind;     ///< hole | stuck | rate | units | speed | span | scale | bias (heading_agreement.h)
+  std::string kind;     ///< hole | stuck | rate | units | speed | span | scale | bias (heading_agreement.h) | offset (straight_line_steering.h)
   std::string detail;   ///< one sentence: what was found, with its numbers, and what the diagnosis does
   /// [s] a hole's first and last sample around it, in the log's own time (NaN for other kinds)
   double t0 = std::numeric_limits<double>::quiet_NaN();

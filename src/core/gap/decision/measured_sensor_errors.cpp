@@ -17,6 +17,8 @@ std::vector<std::string> measuredSensorErrorNotes(const GapReport& report) {
   // data errors").
   static const std::map<std::string, std::string> kForm{
       {"yaw_rate", "yaw_rate"}, {"psi", "heading"}, {"ay", "lateral_acceleration"}, {"delta", "steering_angle"}};
+  // (Not the steering's `offset` on the straights, straight_line_steering.h: one direction of travel cannot tell
+  // it from a crosswind, and on the benchmark's crosswind logs the note would blame the side force it found.)
   static const std::map<std::string, std::string> kEffect{{"scale", "sensor_scale"}, {"bias", "sensor_offset"}};
   std::set<std::string> named;
   for (const VerdictEffect& e : report.verdict.effects) named.insert(e.effect + " (" + e.form + ")");

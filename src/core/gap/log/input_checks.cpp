@@ -9,6 +9,7 @@
 
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/gap/log/heading_agreement.h"
+#include "lane_keeping/gap/log/straight_line_steering.h"
 #include "lane_keeping/gap/log/log_signals.h"
 #include "lane_keeping/tire/tire.h"
 
@@ -472,13 +473,21 @@ class Checker {
     typical_speed_ = speed_.front();
   }
 
-  // ---- the gyro, psi and ay / V laid over each other (heading_agreement.h) -------------------------------
+  // ---- the gyro, psi and ay / V laid over each other (heading_agreement.h); the steering on the straights --
   void headings() {
     // A channel already found stuck or in another unit is what is wrong with it; its scale means nothing.
     for (const char* channel : {"yaw_rate", "psi", "ay", "v"}) {
       if (flagged(channel)) return;
     }
     for (InputCheck& c : headingAgreementChecks(log_)) out_.push_back(std::move(c));
+    // The steering angle at which the car goes straight (straight_line_steering.h), the gyro's measured drift
+    // taken out of the path's curvature first.
+    if (flagged("delta")) return;
+    double bias = 0.0;
+    for (const MeasuredSensorError& e : measuredSensorErrors({&log_})) {
+      if (e.key == "sensors.yaw_rate_bias") bias = e.value;
+    }
+    for (InputCheck& c : straightLineSteeringChecks(log_, config_.vehicle.wheelbase, bias)) out_.push_back(std::move(c));
   }
 
   // ---- speed -----------------------------------------------------------------------------------------
