@@ -64,9 +64,12 @@ void usage(std::ostream& out) {
          "             or more, hold each run out in turn and decide on the held-out evidence summed over them)\n"
          "  --every-fold hold every run (or side) out in turn even where the held-out test alone detects the gap,\n"
          "             and list each fold in the report\n"
-         "  --measured-corrections   correct the gyro scale and drift the input checks measure against psi and\n"
-         "             ay / V before the fits, and name them (default: reported, with a note where the verdict\n"
-         "             does not hold them; the log read as it is)\n"
+         "  --no-measured-corrections   report the gyro scale and drift the input checks measure against psi\n"
+         "             and ay / V (with a note where the verdict does not hold them) but read the log as it is\n"
+         "             (default: corrected before the fits and named among the verdict's effects)\n"
+         "  --max-side-force G   the largest steady side force a candidate may fit and still be the cause,\n"
+         "             as a fraction of the car's weight (default 0.1: a road's steepest bank or a storm's\n"
+         "             crosswind; 0 lifts the bound; a banked oval needs more)\n"
          "  --candidate-forms-only   do not fit the other forms of the leader and of further effects\n"
          "             (LuGre kingpin friction for steering_friction, a soft saturation for torque_limit,\n"
          "             the contact patch's length for cornering_stiffness; docs/gap.md, \"How far\")\n"
@@ -142,7 +145,8 @@ Arguments parseArguments(int argc, char** argv) {
     else if (arg == "--time-budget") a.time_budget_hours = numberOption(arg, value(), 0.0, 1e4, "h");
     else if (arg == "--one-fold") a.options.two_folds = false;
     else if (arg == "--every-fold") a.options.every_fold = true;
-    else if (arg == "--measured-corrections") a.options.correct_measured_sensor_errors = true;
+    else if (arg == "--no-measured-corrections") a.options.correct_measured_sensor_errors = false;
+    else if (arg == "--max-side-force") a.options.max_side_force = numberOption(arg, value(), 0.0, 10.0, "g");
     else if (arg == "--candidate-forms-only") a.options.leader_forms = false;
     else if (arg == "--no-plots") a.plots = false;
     else if (arg == "--quiet") a.quiet = true;

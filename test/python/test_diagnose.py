@@ -107,8 +107,9 @@ def test_every_fold_is_lk_gaps(lk, logs):
 
 
 def test_measured_corrections_is_lk_gaps(lk, tmp_path):
-    """measured_corrections is lk_gap's --measured-corrections: a gyro drifting 0.008 rad/s from the heading is
-    measured before any model, corrected and named, the same from Python as from the tool."""
+    """measured_corrections=False is lk_gap's --no-measured-corrections: a gyro drifting 0.008 rad/s from the heading
+    is measured before any model, corrected and named by default, reported only when off, the same from Python as
+    from the tool."""
     log, scenario = str(tmp_path / "bias.csv"), str(tmp_path / "bias.yaml")
     with open(scenario, "w") as f:
         json.dump({"simulation": {"duration": 12, "log_rate": 100}}, f)
@@ -117,7 +118,7 @@ def test_measured_corrections_is_lk_gaps(lk, tmp_path):
     report_dir = str(tmp_path / "report")
     args = ["--effects", "sensor_offset,lateral_disturbance", "--threads", "1", "--no-plots", "--quiet"]
     code, _, stderr = run_tool("lk_gap", "--config", NOMINAL, "--log", log, "--scenario", scenario,
-                               "--measured-corrections", "--report", report_dir, *args, check=False)
+                               "--report", report_dir, *args, check=False)
     assert code == 0, stderr
     with open(os.path.join(report_dir, "report.json")) as f:
         expected = json.load(f)
@@ -125,11 +126,16 @@ def test_measured_corrections_is_lk_gaps(lk, tmp_path):
     assert first["measured"] and first["effect"] == "sensor_offset" and first["form"] == "yaw_rate"
     assert abs(first["params"]["bias"] - 0.008) < 0.0005
     got = lk.diagnose(NOMINAL, [{"log": log, "scenario": scenario}], effects=["sensor_offset", "lateral_disturbance"],
-                      threads=1, measured_corrections=True)
-    assert without_wall_times(got) == without_wall_times(expected)
-    # Off (the default): the finding is an input check, and no effect is "measured".
-    off = lk.diagnose(NOMINAL, [{"log": log, "scenario": scenario}], effects=["sensor_offset", "lateral_disturbance"],
                       threads=1)
+    assert without_wall_times(got) == without_wall_times(expected)
+    # Off: the finding is an input check, and no effect is "measured"; the same as the tool's.
+    off = lk.diagnose(NOMINAL, [{"log": log, "scenario": scenario}], effects=["sensor_offset", "lateral_disturbance"],
+                      threads=1, measured_corrections=False)
+    code, _, stderr = run_tool("lk_gap", "--config", NOMINAL, "--log", log, "--scenario", scenario,
+                               "--no-measured-corrections", "--report", report_dir, *args, check=False)
+    assert code == 0, stderr
+    with open(os.path.join(report_dir, "report.json")) as f:
+        assert without_wall_times(off) == without_wall_times(json.load(f))
     assert any(c["kind"] == "bias" and c["channel"] == "yaw_rate" for c in off["input_checks"])
     assert not any(e.get("measured") for e in off["verdict"]["effects"])
 

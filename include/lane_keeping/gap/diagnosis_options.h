@@ -11,6 +11,8 @@
 
 namespace lane_keeping {
 
+struct SimConfig;
+
 struct DiagnosisOptions {
   ReplayOptions replay;
   /// [s] mean length of the alternating train / held-out blocks of a log when no run is held out; the
@@ -65,12 +67,19 @@ struct DiagnosisOptions {
   /// decide as they do on the pooled test, and the report lists each (lk_gap --every-fold).
   bool every_fold = false;
   /// Correct the sensor errors the input checks measure before any model (log/heading_agreement.h: the gyro's
-  /// scale where the course and ay / V outvote it, its drift from psi) before the fits, and name them as the
-  /// verdict's effects (decision/measured_sensor_errors.h; lk_gap --measured-corrections). Off by default: they
-  /// are reported (input checks, and a note where the verdict does not hold them) and the log read as it is.
-  /// Corrected, the race car's gyro (0.84) left turn 1 to a side force of 3.2 kN (0.67 g), which no candidate
-  /// but a physical stand-in can take (docs/real_logs/super_fj_fuji.md): the engineer decides.
-  bool correct_measured_sensor_errors = false;
+  /// scale where the course and ay / V outvote it, its drift from psi where ay / V does not contradict it) before
+  /// the fits, and name them as the verdict's effects (decision/measured_sensor_errors.h). An engineer fixes a
+  /// calibration the data prove before modelling. Off (lk_gap --no-measured-corrections): they are reported, with
+  /// a note where the verdict does not hold them, and the log read as it is.
+  bool correct_measured_sensor_errors = true;
+  /// Set by the diagnosis where it corrected measured sensor errors (decision/measured_sensor_errors.h): undoes
+  /// them on each run's configuration for how far's "before" closed loop, so that the gap before is the nominal's
+  /// as configured and the correction's own shrink is counted (empty: the runs' configurations as they are).
+  std::function<void(SimConfig&)> how_far_before;
+  /// [g] the largest steady side force a candidate may fit and still be the cause, as a fraction of the car's
+  /// weight (fit/plausible_magnitude.h): 0.1 g is a road's steepest superelevation (8-12 %) or a storm's
+  /// crosswind on an SUV's side; a banked oval needs more (lk_gap --max-side-force).
+  double max_side_force = 0.1;
   /// Fit the leader's other forms (LuGre kingpin friction, a soft saturation) and let the one that fits
   /// better stand for it (leader_forms.h; issue 47, kind 7).
   bool leader_forms = true;

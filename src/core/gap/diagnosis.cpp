@@ -106,6 +106,12 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapRun>& train
   const std::vector<double> gaps = heldoutGaps(training, heldout, {correction}, inner);
   SimConfig corrected_nominal = nominal;
   correction(corrected_nominal);
+  // How far counts from the nominal as configured: the correction undone for its "before" closed loop.
+  const SensorParams configured = nominal.sensors;
+  inner.how_far_before = [configured](SimConfig& c) {
+    c.sensors.yaw_rate_scale = configured.yaw_rate_scale;
+    c.sensors.yaw_rate_bias = configured.yaw_rate_bias;
+  };
   auto correctedRuns = [&](const std::vector<GapRun>& runs) {
     std::vector<GapRun> out = runs;
     for (GapRun& run : out) correction(run.config);

@@ -83,6 +83,12 @@ py::tuple diagnose(py::handle nominal_layers, py::sequence training_runs, py::se
   options.effects = options_in["effects"].cast<std::vector<std::string>>();
   options.two_folds = options_in["two_folds"].cast<bool>();
   if (options_in.contains("every_fold")) options.every_fold = options_in["every_fold"].cast<bool>();
+  if (options_in.contains("max_side_force")) {
+    options.max_side_force = options_in["max_side_force"].cast<double>();
+    if (!(options.max_side_force >= 0.0 && options.max_side_force <= 10.0)) {
+      throw ConfigError("max_side_force must be between 0 and 10 (g)");
+    }
+  }
   if (options_in.contains("measured_corrections")) {
     options.correct_measured_sensor_errors = options_in["measured_corrections"].cast<bool>();
   }

@@ -42,6 +42,8 @@ struct CandidateFit {
   const CandidateEffect* effect = nullptr;
   bool ok = false;
   std::string note;
+  /// Why its magnitude is beyond what the world makes ("": plausible; fit/plausible_magnitude.h).
+  std::string implausible;
   std::vector<double> theta, sigma;
   bool at_bound = false;  ///< a fitted parameter is pinned at a bound of its range (pinnedAtBound)
   std::string stability_note;  ///< set when the least-squares fit's closed loop leaves the logged bounds

@@ -37,6 +37,10 @@ struct InputCheck {
   std::vector<std::string> skip;  ///< replays the log's rate cannot feed meaningfully (rate)
 };
 
+/// A finding of `kind` on `channel` of the log `log` (the other fields as declared).
+InputCheck inputCheck(const std::string& log, const std::string& channel, const std::string& kind,
+                      const std::string& detail);
+
 /// The steering loop's modes [Hz]: the roots of J_F s^2 + k_d s + k_p = 0 (the PID of Beregi eqs 12-13
 /// closed on the front axle's inertia; the aligning moment and the delay tau2 are small beside k_p), the
 /// slower and the faster (equal for a complex pair: the natural frequency). Zero without a loop (p = 0).

@@ -78,6 +78,12 @@ struct RankedEffect {
   /// (closed_loop_checks.h), or the logs cannot drive a closed loop. closed_loop_bounded is then true
   /// (nothing contradicts the fit).
   bool closed_loop_checked = true;
+  /// Why the fitted magnitude is beyond what the world makes ("" where it is not): a side force beyond
+  /// DiagnosisOptions::max_side_force (fit/plausible_magnitude.h). Such a candidate, like one whose closed
+  /// loop leaves the logged bounds, cannot be the verdict and ranks last.
+  std::string implausible;
+  /// Whether it may be the cause: its closed loop bounded and its magnitude plausible.
+  bool mayBeTheCause() const { return closed_loop_bounded && implausible.empty(); }
 
   /// "sensor_offset (yaw_rate)", or the bare name for an effect with one form.
   std::string label() const { return form.empty() ? effect : effect + " (" + form + ")"; }

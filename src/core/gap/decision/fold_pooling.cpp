@@ -114,6 +114,7 @@ std::vector<RankedEffect> pooledRanking(const std::vector<RankedEffect>& first,
       after2 += same->heldout_gap_after * same->heldout_gap_after;
       evidence += same->score;
       p.closed_loop_bounded = p.closed_loop_bounded && same->closed_loop_bounded;
+      if (p.implausible.empty()) p.implausible = same->implausible;  // implausible in any fold: in the pool
     }
     if (!everywhere) {
       if (notes != nullptr) notes->push_back(r.label() + ": not ranked in every fold, left out of the pooled ranking");
@@ -126,7 +127,7 @@ std::vector<RankedEffect> pooledRanking(const std::vector<RankedEffect>& first,
     pooled.push_back(p);
   }
   std::stable_sort(pooled.begin(), pooled.end(), [](const RankedEffect& a, const RankedEffect& b) {
-    if (a.closed_loop_bounded != b.closed_loop_bounded) return a.closed_loop_bounded;
+    if (a.mayBeTheCause() != b.mayBeTheCause()) return a.mayBeTheCause();
     return a.heldout_gap_after < b.heldout_gap_after;
   });
   return pooled;

@@ -241,7 +241,7 @@ ForwardSelection forwardSelection(const CandidateFit& leader, const std::vector<
     e.gap_after = gap_with;
     // Its look-alikes in this round, as decideVerdict lists the leader's.
     for (const auto& r : ranking) {
-      if (r.label() != pick.winner->label() && effectChangesSubsystem(r.effect, where, r.form) && r.closed_loop_bounded &&
+      if (r.label() != pick.winner->label() && effectChangesSubsystem(r.effect, where, r.form) && r.mayBeTheCause() &&
           r.shrink >= options.min_further_shrink && pick.winner->shrink - r.shrink < 0.1) {
         e.confusable_with.push_back(isSensorEffect(r.effect) ? r.label() : r.effect);
       }

@@ -99,10 +99,19 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
     });
     std::vector<ClosedLoopReplay> nominal(runs.size()), corrected(runs.size());
     std::vector<std::string> from_onset(runs.size());  // how each run's correction was timed, where it was
-    parallelFor((winner ? 2 : 1) * runs.size(), options.threads, [&](std::size_t k) {
+    // Measured sensor errors corrected before the fits (DiagnosisOptions::how_far_before): the runs' configurations
+    // hold them; "before" is the nominal as configured, and the corrected loop runs even where nothing was fitted.
+    const bool undone = static_cast<bool>(options.how_far_before);
+    const bool corrects = winner != nullptr || undone;
+    parallelFor((corrects ? 2 : 1) * runs.size(), options.threads, [&](std::size_t k) {
       const std::size_t i = k % runs.size();
       if (k < runs.size()) {
-        nominal[i] = closedLoopReplay(*runs[i].config, *runs[i].log, start_sigma1[i]);
+        nominal[i] = closedLoopReplay(undone ? changed(*runs[i].config, options.how_far_before) : *runs[i].config,
+                                      *runs[i].log, start_sigma1[i]);
+        return;
+      }
+      if (winner == nullptr) {
+        corrected[i] = closedLoopReplay(*runs[i].config, *runs[i].log, start_sigma1[i]);
         return;
       }
       const SimConfig with = changed(*runs[i].config, winner->change);
@@ -138,9 +147,9 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
     for (std::size_t i = 0; i < runs.size(); ++i) {
       const LogSignals& log = *runs[i].log;
       const ClosedLoopReplay& b = nominal[i];
-      const ClosedLoopReplay& a = winner ? corrected[i] : b;
+      const ClosedLoopReplay& a = corrects ? corrected[i] : b;
       if (!b.note.empty()) report->notes.push_back("nominal " + b.note);
-      if (winner && !a.note.empty()) report->notes.push_back("corrected " + a.note);
+      if (corrects && !a.note.empty()) report->notes.push_back("corrected " + a.note);
       if (std::isfinite(b.gap) && std::isfinite(a.gap)) {
         before += b.gap * b.gap;
         after += a.gap * a.gap;
@@ -170,7 +179,7 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
         artifacts->overlay["y_nominal"] = b.y;
         artifacts->overlay["yaw_rate_nominal"] = b.yaw_rate;
         artifacts->overlay["delta_nominal"] = b.delta;
-        if (winner) {
+        if (corrects) {
           auto pad = [&](std::vector<double> v) {
             v.resize(b.t.size(), kNaN);
             return v;

@@ -66,7 +66,7 @@ std::map<std::string, KnockOn> netKnockOn(std::vector<RankedEffect>* ranking, co
   // do not act.
   std::vector<std::pair<RankedEffect*, const CandidateFit*>> chosen;
   for (RankedEffect& r : *ranking) {
-    if (!r.closed_loop_bounded || !(r.score > 0.0)) continue;
+    if (!r.mayBeTheCause() || !(r.score > 0.0)) continue;
     const CandidateFit* fit = nullptr;
     for (const auto& f : fits) {
       if (f.ok && f.effect->name == r.effect && f.effect->form == primaryForm(r.form)) fit = &f;
@@ -106,7 +106,7 @@ std::map<std::string, KnockOn> netKnockOn(std::vector<RankedEffect>* ranking, co
     out[ranked->label()] = k;
   }
   std::stable_sort(ranking->begin(), ranking->end(), [](const RankedEffect& a, const RankedEffect& b) {
-    if (a.closed_loop_bounded != b.closed_loop_bounded) return a.closed_loop_bounded;
+    if (a.mayBeTheCause() != b.mayBeTheCause()) return a.mayBeTheCause();
     return a.heldout_gap_after < b.heldout_gap_after;
   });
   return out;

@@ -114,6 +114,9 @@ void withMeasuredErrors(GapReport* report, const std::vector<MeasuredSensorError
   v.combined_gap_after = named ? v.combined_gap_after * k : gap_corrected;
   v.combined_shrink = gap_as_logged > 0.0 ? 1.0 - v.combined_gap_after / gap_as_logged : 0.0;
   v.effects = effects;
+  report->notes.push_back("measured before any model and corrected before the fits: " + what +
+                          "; where, the ranking and the per-subsystem figures are of the logs so corrected, the verdict's "
+                          "gaps and how far's closed loop from the nominal as configured");
 }
 
 }  // namespace diagnosis

@@ -57,13 +57,15 @@ std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const 
     r.score = fit.ok ? fit.evidence : 0.0;
     r.closed_loop_bounded = !fit.ok || fit.unbounded_on.empty();
     r.closed_loop_checked = !fit.ok || fit.loop_checked;
+    r.implausible = fit.ok ? fit.implausible : "";
     if (fit.ok && !fit.note.empty()) notes->push_back(fit.effect->label() + ": " + fit.note);
     if (fit.ok && fit.at_bound) notes->push_back(fit.effect->label() + ": a fitted parameter is pinned at a bound of its range");
+    if (fit.ok && !fit.implausible.empty()) notes->push_back(fit.effect->label() + ": " + fit.implausible + " (ranked last)");
     if (fit.ok && !fit.stability_note.empty()) notes->push_back(fit.effect->label() + ": " + fit.stability_note);
     ranking.push_back(r);
   }
   std::sort(ranking.begin(), ranking.end(), [](const RankedEffect& a, const RankedEffect& b) {
-    if (a.closed_loop_bounded != b.closed_loop_bounded) return a.closed_loop_bounded;
+    if (a.mayBeTheCause() != b.mayBeTheCause()) return a.mayBeTheCause();
     return a.heldout_gap_after < b.heldout_gap_after;
   });
   return ranking;
@@ -168,6 +170,7 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
              << briefNumber(r.heldout_gap_after) << ", training " << briefNumber(r.train_gap_before) << " -> "
              << briefNumber(r.train_gap_after);
       if (!r.closed_loop_bounded) reason << " (its least-squares fit's closed loop leaves the logged bounds)";
+      if (!r.implausible.empty()) reason << " (" << r.implausible << ")";
     }
     reason << ". Named on the loop's modes: " << modalReason(m) << ". The replays, stepping between samples "
            << briefNumber(1.0 / m.ringing.rate) << " s apart, do not weigh a mode at " << briefNumber(m.mode.frequency)
@@ -252,7 +255,7 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
       v.confidence = std::clamp(best->shrink, 0.0, 1.0) * (0.5 + 0.5 * std::clamp(margin / 0.3, 0.0, 1.0));
       if (pinned_winner) v.confidence *= 0.5;
       for (const auto& r : ranking) {
-        if (&r != best && changesWhere(r) && r.closed_loop_bounded && r.shrink >= options.min_shrink &&
+        if (&r != best && changesWhere(r) && r.mayBeTheCause() && r.shrink >= options.min_shrink &&
             best->shrink - r.shrink < 0.1) {
           // A sensor error is named with its channel: sensor_offset of the heading is not of the gyro.
           v.confusable_with.push_back(isSensorEffect(r.effect) ? r.label() : r.effect);

@@ -15,7 +15,7 @@ WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
   const RankedEffect* best_pinned = nullptr;
   const RankedEffect* best_sensor = nullptr;  // the best unpinned sensor error that qualifies
   for (const auto& r : ranking) {
-    if (!changes_where(r) || !r.closed_loop_bounded) continue;
+    if (!changes_where(r) || !r.mayBeTheCause()) continue;
     if (s.top == nullptr) s.top = &r;
     if (!qualifies(r)) continue;
     if (pinned.count(r.label()) != 0) {
@@ -40,7 +40,7 @@ WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
     }
   }
   for (const auto& r : ranking) {
-    if (&r != s.winner && changes_where(r) && r.closed_loop_bounded) {
+    if (&r != s.winner && changes_where(r) && r.mayBeTheCause()) {
       s.runner_up = &r;
       break;
     }

@@ -1,3 +1,4 @@
+#include "lane_keeping/gap/fit/plausible_magnitude.h"
 #include "lane_keeping/gap/fit/candidate_fit.h"
 
 #include <Eigen/Dense>
@@ -550,6 +551,7 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
   }
 
   fit.at_bound = pinnedAtBound(effect, theta, fit.sigma);
+  fit.implausible = implausibleMagnitude(effect, theta, fit.corrected, options.max_side_force);
 
   // Scores: training and held-out, all subsystems (unchanged ones keep their nominal scores).
   fit.train_before = combinedGap([&] {

@@ -249,12 +249,7 @@ std::vector<InputCheck> headingAgreementChecks(const GapLog& log) {
   const std::vector<HeadingComparison> all = headingComparisons(log);
   const bool course = log.psi_is_course;
   auto add = [&](const std::string& channel, const std::string& kind, const std::string& detail) {
-    InputCheck c;
-    c.log = log.source;
-    c.channel = channel;
-    c.kind = kind;
-    c.detail = detail;
-    out.push_back(c);
+    out.push_back(inputCheck(log.source, channel, kind, detail));
   };
   const HeadingComparison* gp = find(all, "yaw_rate", "psi");
   const HeadingComparison* ga = find(all, "yaw_rate", "ay");

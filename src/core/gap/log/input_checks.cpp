@@ -116,12 +116,7 @@ class Checker {
     });
   }
   InputCheck& add(const std::string& channel, const std::string& kind, const std::string& detail) {
-    InputCheck c;
-    c.log = log_.source;
-    c.channel = channel;
-    c.kind = kind;
-    c.detail = detail;
-    out_.push_back(c);
+    out_.push_back(inputCheck(log_.source, channel, kind, detail));
     return out_.back();
   }
   std::vector<double> derivative(const std::vector<double>& v) const {
@@ -552,6 +547,16 @@ Modes chassisModes(const SimConfig& config, double speed) {
   // Lateral velocity and yaw rate of the linear single track (small slip angles, F_y = C alpha).
   return modesOf(-(cf + cr) / (m * V), -V - (a * cf - b * cr) / (m * V), -(a * cf - b * cr) / (J * V),
                  -(a * a * cf + b * b * cr) / (J * V));
+}
+
+InputCheck inputCheck(const std::string& log, const std::string& channel, const std::string& kind,
+                      const std::string& detail) {
+  InputCheck c;
+  c.log = log;
+  c.channel = channel;
+  c.kind = kind;
+  c.detail = detail;
+  return c;
 }
 
 std::vector<InputCheck> inputChecks(const GapLog& log, const SimConfig& config) { return Checker(log, config).run(); }

@@ -140,12 +140,7 @@ std::vector<InputCheck> straightLineSteeringChecks(const GapLog& log, double whe
                 apart);
   detail += buffer;
   detail += "; reported, not corrected";
-  InputCheck c;
-  c.log = log.source;
-  c.channel = "delta";
-  c.kind = "offset";
-  c.detail = detail;
-  return {c};
+  return {inputCheck(log.source, "delta", "offset", detail)};
 }
 
 }  // namespace lane_keeping

@@ -19,7 +19,7 @@
 //                  "regimes": [{"variable", "lo", "hi", "share", "time_share"}] },
 //     "ranking": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {"key": "value"},
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
-//                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked"}],
+//                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked", "implausible" (only where it is)}],
 //     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason",
 //                  "basis" ("replays", "modal": named on the loop's modes, modal_evidence.h, or "measured": a sensor error the input checks measured, decision/measured_sensor_errors.h), "confusable_with": [..],
 //                  "effects": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {}, "share", "gap_after",
@@ -115,6 +115,7 @@ OrderedJson toJson(const RankedEffect& r) {
   out["shrink"] = number(r.shrink);
   out["score"] = number(r.score);
   out["closed_loop_bounded"] = r.closed_loop_bounded;
+  if (!r.implausible.empty()) out["implausible"] = r.implausible;  // only where it is: earlier reports stay as they were
   out["closed_loop_checked"] = r.closed_loop_checked;
   return out;
 }
@@ -527,6 +528,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "shrink", &s.shrink, true);
     r.get(e, p, "score", &s.score);
     r.get(e, p, "closed_loop_bounded", &s.closed_loop_bounded);
+    r.get(e, p, "implausible", &s.implausible);  // absent: plausible
     r.get(e, p, "closed_loop_checked", &s.closed_loop_checked);  // absent in older reports: read as checked
     rep.ranking.push_back(s);
   });

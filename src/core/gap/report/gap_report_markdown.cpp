@@ -216,7 +216,8 @@ void writeRanking(std::ostream& out, const GapReport& r) {
   for (std::size_t i = 0; i < r.ranking.size(); ++i) {
     const RankedEffect& e = r.ranking[i];
     const bool winner = e.effect == r.verdict.effect;
-    const std::string name = cell(e.effect) + (e.closed_loop_bounded ? "" : " (closed loop unbounded)");
+    const std::string name = cell(e.effect) + (e.closed_loop_bounded ? "" : " (closed loop unbounded)") +
+                             (e.implausible.empty() ? "" : " (implausible magnitude)");
     out << "| " << i + 1 << " | " << (winner ? "**" + name + "**" : name) << " | " << cell(e.form.empty() ? "-" : e.form)
         << " | " << cell(paramsWithSigma(e)) << " | " << num(e.heldout_gap_before) << " | " << num(e.heldout_gap_after) << " | "
         << percent(e.shrink) << " | " << num(e.score, "%.3g") << " |\n";

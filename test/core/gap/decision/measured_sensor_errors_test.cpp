@@ -104,7 +104,7 @@ TEST(MeasuredSensorErrors, TheMeasuredErrorLeadsWhereItRemovesMostAndTheSharesAr
   EXPECT_TRUE(std::isnan(led.verdict.effects[0].evidence));
 }
 
-TEST(MeasuredSensorErrors, AGyroBiasMeasuredBeforeAnyModelIsCorrectedAndNamedOnRequest) {
+TEST(MeasuredSensorErrors, AGyroBiasMeasuredBeforeAnyModelIsCorrectedAndNamed) {
   // The independent family's gyro bias on the bend (0.008 rad/s), one 100 Hz log in blocks.
   BenchmarkCase c;
   for (const BenchmarkCase& k : familyCases("independent")) {
@@ -124,7 +124,7 @@ TEST(MeasuredSensorErrors, AGyroBiasMeasuredBeforeAnyModelIsCorrectedAndNamedOnR
   EXPECT_TRUE(on.verdict.effects[0].measured);
   EXPECT_NEAR(on.verdict.effects[0].params.at("bias"), 0.008, 0.0005);
   EXPECT_GT(on.verdict.shrink, 0.8) << on.verdict.reason;
-  // Off (the default): the diagnosis fits it itself, and the check's finding is reported beside it.
+  // Off: the diagnosis fits it itself, and the check's finding is reported beside it.
   options.correct_measured_sensor_errors = false;
   const GapReport off = diagnoseGap(nominal, {log}, {}, options);
   EXPECT_EQ(off.verdict.effect, "sensor_offset");
