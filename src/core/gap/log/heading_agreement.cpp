@@ -311,11 +311,26 @@ std::vector<InputCheck> headingAgreementChecks(const GapLog& log) {
   }
   if (drift != nullptr && drift->drifts()) {
     const HeadingComparison* gp = drift;
-    add("yaw_rate", "bias",
-        format("the yaw rate drifts %.4f +- %.4f rad/s from psi's rate (%.3f deg/s over %.0f s): a gyro bias",
-               gp->drift, gp->drift_sigma, gp->drift * kDegrees, log.duration()) +
-            (course ? " (psi is a course: a body slip that grows over the log would drift it too)" : std::string()) +
-            "; the candidate sensor_offset (yaw_rate) is fitted by the diagnosis");
+    // The gyro and psi drift apart: ay / V, where it tells, sides with one of them.
+    const HeadingComparison* gd = find(all, "yaw_rate", "ay");
+    const bool told = gd != nullptr && std::isfinite(gd->drift);
+    const bool psi_drifts =
+        told && std::fabs(gd->drift - gp->drift) > 3.0 * std::hypot(gd->drift_sigma, gp->drift_sigma) + kDriftTolerance;
+    if (psi_drifts) {
+      add("psi", "bias",
+          format("psi drifts %.4f +- %.4f rad/s from the integrated yaw rate, which ay / V follows (the gyro drifts "
+                 "%.4f +- %.4f rad/s from it): psi's source drifts (an inertial heading's), not the gyro; reported, "
+                 "not corrected",
+                 -gp->drift, gp->drift_sigma, gd->drift, gd->drift_sigma));
+    } else {
+      add("yaw_rate", "bias",
+          format("the yaw rate drifts %.4f +- %.4f rad/s from psi's rate (%.3f deg/s over %.0f s)", gp->drift,
+                 gp->drift_sigma, gp->drift * kDegrees, log.duration()) +
+              (told ? format(" and %.4f +- %.4f rad/s from ay / V: a gyro bias", gd->drift, gd->drift_sigma)
+                    : std::string(": a gyro bias, or psi's source drifting (no ay / V here to tell which)")) +
+              (course ? " (psi is a course: a body slip that grows over the log would drift it too)" : std::string()) +
+              "; corrected before the fits where decided (--no-measured-corrections: reported only)");
+    }
   }
   return out;
 }

@@ -118,6 +118,34 @@ TEST(HeadingAgreement, AGyroBiasIsTheDriftFromTheHeading) {
   EXPECT_TRUE(contains(found[0].detail, "drifts 0.005")) << found[0].detail;
 }
 
+TEST(HeadingAgreement, AHeadingThatDriftsIsToldFromAGyroBiasByTheAccelerometer) {
+  // psi drifting 0.004 rad/s (an inertial heading's), the gyro right: ay / V follows the gyro, so psi is named and
+  // nothing is decided for the gyro (no correction); without ay / V the two cannot be told apart, and it says so.
+  GapLog log = turn(Errors{});
+  for (std::size_t i = 0; i < log.size(); ++i) log.psi[i] += 0.004 * log.t[i];
+  auto found = headingAgreementChecks(log);
+  ASSERT_EQ(found.size(), 1u) << listed(found);
+  EXPECT_EQ(found[0].channel, "psi");
+  EXPECT_EQ(found[0].kind, "bias");
+  EXPECT_TRUE(contains(found[0].detail, "psi drifts 0.0040")) << found[0].detail;
+  EXPECT_TRUE(measuredSensorErrors({&log}).empty());
+  log.ay.clear();
+  found = headingAgreementChecks(log);
+  ASSERT_EQ(found.size(), 1u) << listed(found);
+  EXPECT_EQ(found[0].channel, "yaw_rate");
+  EXPECT_TRUE(contains(found[0].detail, "no ay / V here to tell which")) << found[0].detail;
+}
+
+TEST(HeadingAgreement, LogsThatContradictEachOtherCorrectNothing) {
+  // One turn with the gyro at 0.85, another with it right: no one gain for the car, nothing decided.
+  Errors low;
+  low.gyro_scale = 0.85;
+  const GapLog a = turn(low, 1u), b = turn(Errors{}, 2u);
+  ASSERT_EQ(measuredSensorErrors({&a}).size(), 1u);
+  EXPECT_TRUE(measuredSensorErrors({&a, &b}).empty());
+  EXPECT_EQ(measuredSensorErrors({&a, &a}).size(), 1u);
+}
+
 TEST(HeadingAgreement, SensorsThatAgreeOrACarThatDoesNotTurnShowNothing) {
   // Scale errors within a road car's calibration and noise: nothing, over 20 noise draws.
   for (unsigned seed = 1; seed <= 20; ++seed) {
