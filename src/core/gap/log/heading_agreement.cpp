@@ -165,6 +165,8 @@ struct SingleSensorGain {
   std::string or_else; ///< the next best where the comparisons cannot tell the two apart (chi-square within 4)
   double gain = 1.0, sigma = 0.0;
   double other_gain = 1.0;
+  /// The gyro, fitting best, decided over psi within the Delta chi-square of 4 because psi is an angle (below).
+  bool by_angle = false;
 };
 
 /// The one sensor whose gain, the other two right, explains the three comparisons: each hypothesis's gain by
@@ -205,8 +207,16 @@ SingleSensorGain oddOneOut(const HeadingComparison& gp, const HeadingComparison&
     best.gain = std::exp(top.x);
     best.sigma = best.gain * top.sx;
     if (fitted[1].chi2 - top.chi2 < 4.0) {
-      best.or_else = fitted[1].sensor;
       best.other_gain = std::exp(fitted[1].x);
+      // A heading or a course is an angle, measured absolutely (a GNSS course, a magnetometer, a map match): it has
+      // no gain to be off by several per cent short of a unit, which the units check finds (57.3). A gyro's gain is
+      // a calibration that is off: where the gyro fits best and psi's gain is the only look-alike, the gyro is it.
+      // (Not the other way round: where psi's gain fits best, the data and this reasoning disagree: undecided.)
+      if (std::string(top.sensor) == "yaw_rate" && std::string(fitted[1].sensor) == "psi") {
+        best.by_angle = true;
+      } else {
+        best.or_else = fitted[1].sensor;
+      }
     }
   }
   return best;
@@ -278,6 +288,14 @@ std::vector<InputCheck> headingAgreementChecks(const GapLog& log) {
             "the three turn sensors disagree and no one sensor's gain explains it: " + describe(*gp, course) + ", " +
                 describe(*ga, course) + ", " + describe(*pa, course) + reported);
       }
+    } else if (best.sensor == "yaw_rate" && best.by_angle) {
+      add("yaw_rate", "scale",
+          describe(*gp, course) + ", " + describe(*ga, course) + ", " + describe(*pa, course) +
+              format(": one sensor's gain is off, the gyro's (%.3f) or psi's (%.3f), and the comparisons with ay / V, "
+                     "which hold the body slip, cannot tell which over this turn; psi is an angle, with no gain to be "
+                     "off short of a unit: the gyro reads %.3f +- %.3f of the yaw rate",
+                     best.gain, best.other_gain, best.gain, best.sigma) +
+              reported);
     } else if (best.sensor == "yaw_rate") {
       add("yaw_rate", "scale",
           describe(*gp, course) + " and " + format("%.3f +- %.3f times", ga->scale, ga->scale_sigma) +
