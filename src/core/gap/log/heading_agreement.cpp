@@ -3,34 +3,32 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "lane_keeping/common/effective_samples.h"
+#include "lane_keeping/common/printf_string.h"
+#include "lane_keeping/gap/log/angle_unwrap.h"
+#include "lane_keeping/gap/log/time_holes.h"
 
 namespace lane_keeping {
 namespace {
 
 constexpr double kMinSpeed = 5.0;        ///< [m/s] below it ay / V is the accelerometer's noise over a small V
-constexpr double kHoleSteps = 5.0;       ///< a step beyond this many median steps ends a stretch (as input_checks)
 constexpr double kMinTurned = 0.1;       ///< [rad] a reference turning less shows no scale
 constexpr std::size_t kMinSamples = 20;
 constexpr double kDegrees = 180.0 / M_PI;
 
-/// [first, last) rows of the stretches: no hole inside, and (where `speed` matters) V >= kMinSpeed.
+/// [first, last) rows of the stretches: the log's between its holes (time_holes.h), and, where `speed` matters,
+/// split where V < kMinSpeed.
 std::vector<std::pair<std::size_t, std::size_t>> stretches(const GapLog& log, bool speed) {
   std::vector<std::pair<std::size_t, std::size_t>> out;
-  const double step = log.medianStep();
-  std::size_t first = 0;
-  auto usable = [&](std::size_t i) { return !speed || std::fabs(log.v[i]) >= kMinSpeed; };
-  auto close = [&](std::size_t end) {
-    if (end > first + 1) out.emplace_back(first, end);
-  };
-  for (std::size_t i = 0; i < log.size(); ++i) {
-    const bool hole = i > first && log.t[i] - log.t[i - 1] > kHoleSteps * step;
-    if (!usable(i) || hole) {
-      close(i);
-      first = usable(i) ? i : i + 1;
+  for (const auto& [begin, end] : holeFreeStretches(log.t)) {
+    std::size_t first = begin;
+    for (std::size_t i = begin; i <= end; ++i) {
+      if (i < end && (!speed || std::fabs(log.v[i]) >= kMinSpeed)) continue;
+      if (i > first + 1) out.emplace_back(first, i);
+      first = i + 1;
     }
   }
-  close(log.size());
   return out;
 }
 
@@ -45,17 +43,10 @@ std::vector<double> integrated(const GapLog& log, const std::vector<std::pair<st
   return out;
 }
 
-/// psi without 2 pi jumps (a heading logged in (-pi, pi]).
-std::vector<double> unwrapped(const std::vector<double>& psi) {
-  std::vector<double> out = psi;
-  double shift = 0.0;
-  for (std::size_t i = 1; i < psi.size(); ++i) {
-    const double d = psi[i] - psi[i - 1];
-    if (d > M_PI) shift -= 2.0 * M_PI;
-    if (d < -M_PI) shift += 2.0 * M_PI;
-    out[i] = psi[i] + shift;
-  }
-  return out;
+/// psi without 2 pi jumps: a log read from a file is unwrapped already (gap_log.h); one built in memory may not be.
+std::vector<double> unwrapped(std::vector<double> psi) {
+  unwrapAngle(&psi);
+  return psi;
 }
 
 HeadingComparison compare(const GapLog& log, const std::vector<std::pair<std::size_t, std::size_t>>& parts,
@@ -98,18 +89,14 @@ HeadingComparison compare(const GapLog& log, const std::vector<std::pair<std::si
   if (!(det > 0.0)) return c;
   const double scale = scaled ? (stt * sxy - sxt * sty) / det : 1.0;
   c.drift = scaled ? (sxx * sty - sxt * sxy) / det : sty / stt;
-  // The residual's scatter and its lag-1 autocorrelation within the stretches.
+  // The residual's scatter, counted with its effective sample count within the stretches.
   std::vector<double> e(n);
-  double see = 0.0, lag = 0.0;
+  double see = 0.0;
   for (std::size_t i = 0; i < n; ++i) {
     e[i] = yc[i] - scale * xc[i] - c.drift * tc[i];
     see += e[i] * e[i];
   }
-  for (std::size_t i = 1; i < n; ++i) {
-    if (std::find(starts.begin(), starts.end(), i) == starts.end()) lag += e[i] * e[i - 1];
-  }
-  const double rho = see > 0.0 ? std::clamp(lag / see, 0.0, 0.999999) : 0.0;
-  c.effective_samples = std::clamp(static_cast<double>(n) * (1.0 - rho) / (1.0 + rho), 1.0, static_cast<double>(n));
+  c.effective_samples = effectiveSampleCount(e, starts);
   const double parameters = scaled ? 2.0 : 1.0;
   const double dof = static_cast<double>(n) - parameters - static_cast<double>(parts.size());
   const double s2 = see / std::max(1.0, dof) * (static_cast<double>(n) / c.effective_samples);
@@ -119,13 +106,6 @@ HeadingComparison compare(const GapLog& log, const std::vector<std::pair<std::si
     c.scale_sigma = std::sqrt(s2 * stt / det);
   }
   return c;
-}
-
-std::string format(const char* fmt, double a = 0, double b = 0, double c = 0, double d = 0, double e = 0,
-                   double f = 0) {
-  char buffer[512];
-  std::snprintf(buffer, sizeof buffer, fmt, a, b, c, d, e, f);
-  return buffer;
 }
 
 const HeadingComparison* find(const std::vector<HeadingComparison>& all, const std::string& of, const std::string& against) {
@@ -142,8 +122,8 @@ std::string label(const std::string& channel, bool course) {
 }
 
 std::string describe(const HeadingComparison& c, bool course) {
-  return label(c.of, course) + format(" turns %.3f +- %.3f times ", c.scale, c.scale_sigma) + label(c.against, course) +
-         format(" (over %.0f deg)", c.turned * kDegrees);
+  return label(c.of, course) + printfString(" turns %.3f +- %.3f times ", c.scale, c.scale_sigma) + label(c.against, course) +
+         printfString(" (over %.0f deg)", c.turned * kDegrees);
 }
 
 /// The references' own systematic error on a scale, beside its standard error: 2 % (gravity's share in a rolled
@@ -279,8 +259,8 @@ std::vector<InputCheck> headingAgreementChecks(const GapLog& log) {
     if (!best.sensor.empty() && !best.or_else.empty()) {
       add(best.sensor, "scale",
           describe(*gp, course) + ", " + describe(*ga, course) + ", " + describe(*pa, course) +
-              ": one sensor's gain is off, " + best.sensor + format(" (%.3f)", best.gain) + " or " + best.or_else +
-              format(" (%.3f)", best.other_gain) +
+              ": one sensor's gain is off, " + best.sensor + printfString(" (%.3f)", best.gain) + " or " + best.or_else +
+              printfString(" (%.3f)", best.other_gain) +
               "; the comparisons with ay / V, which hold the body slip, cannot tell which over this turn" + reported);
     } else if (best.sensor.empty()) {
       if (gp->scaleOff() || ga->scaleOff() || pa->scaleOff()) {
@@ -291,30 +271,30 @@ std::vector<InputCheck> headingAgreementChecks(const GapLog& log) {
     } else if (best.sensor == "yaw_rate" && best.by_angle) {
       add("yaw_rate", "scale",
           describe(*gp, course) + ", " + describe(*ga, course) + ", " + describe(*pa, course) +
-              format(": one sensor's gain is off, the gyro's (%.3f) or psi's (%.3f), and the comparisons with ay / V, "
+              printfString(": one sensor's gain is off, the gyro's (%.3f) or psi's (%.3f), and the comparisons with ay / V, "
                      "which hold the body slip, cannot tell which over this turn; psi is an angle, with no gain to be "
                      "off short of a unit: the gyro reads %.3f +- %.3f of the yaw rate",
                      best.gain, best.other_gain, best.gain, best.sigma) +
               reported);
     } else if (best.sensor == "yaw_rate") {
       add("yaw_rate", "scale",
-          describe(*gp, course) + " and " + format("%.3f +- %.3f times", ga->scale, ga->scale_sigma) +
-              " the integrated ay / V, while psi and ay / V agree (" + format("%.3f", pa->scale) +
-              format("): the gyro reads %.3f +- %.3f of the yaw rate (a gain error, or an axis tilted by %.0f deg from "
+          describe(*gp, course) + " and " + printfString("%.3f +- %.3f times", ga->scale, ga->scale_sigma) +
+              " the integrated ay / V, while psi and ay / V agree (" + printfString("%.3f", pa->scale) +
+              printfString("): the gyro reads %.3f +- %.3f of the yaw rate (a gain error, or an axis tilted by %.0f deg from "
                      "the vertical, which reads its cosine)",
                      best.gain, best.sigma, std::acos(std::clamp(best.gain, 0.0, 1.0)) * kDegrees) +
               reported);
     } else if (best.sensor == "ay") {
       add("ay", "scale",
-          "the integrated ay / V turns " + format("%.3f", 1.0 / ga->scale) + " times the integrated yaw rate and " +
-              format("%.3f", 1.0 / pa->scale) + " times " + label("psi", course) +
-              format(", while the gyro and psi agree (%.3f): the lateral accelerometer reads %.3f +- %.3f of the "
+          "the integrated ay / V turns " + printfString("%.3f", 1.0 / ga->scale) + " times the integrated yaw rate and " +
+              printfString("%.3f", 1.0 / pa->scale) + " times " + label("psi", course) +
+              printfString(", while the gyro and psi agree (%.3f): the lateral accelerometer reads %.3f +- %.3f of the "
                      "lateral acceleration",
                      gp->scale, best.gain, best.sigma) +
               reported);
     } else {
       add("psi", "scale",
-          describe(*pa, course) + format(" and the integrated yaw rate %.3f times it, while the gyro and ay / V agree "
+          describe(*pa, course) + printfString(" and the integrated yaw rate %.3f times it, while the gyro and ay / V agree "
                                          "(%.3f): psi turns %.3f +- %.3f of the car's turning (its unit or its source)",
                                          1.0 / gp->scale, ga->scale, best.gain, best.sigma) +
               reported);
@@ -336,15 +316,15 @@ std::vector<InputCheck> headingAgreementChecks(const GapLog& log) {
         told && std::fabs(gd->drift - gp->drift) > 3.0 * std::hypot(gd->drift_sigma, gp->drift_sigma) + kDriftTolerance;
     if (psi_drifts) {
       add("psi", "bias",
-          format("psi drifts %.4f +- %.4f rad/s from the integrated yaw rate, which ay / V follows (the gyro drifts "
+          printfString("psi drifts %.4f +- %.4f rad/s from the integrated yaw rate, which ay / V follows (the gyro drifts "
                  "%.4f +- %.4f rad/s from it): psi's source drifts (an inertial heading's), not the gyro; reported, "
                  "not corrected",
                  -gp->drift, gp->drift_sigma, gd->drift, gd->drift_sigma));
     } else {
       add("yaw_rate", "bias",
-          format("the yaw rate drifts %.4f +- %.4f rad/s from psi's rate (%.3f deg/s over %.0f s)", gp->drift,
+          printfString("the yaw rate drifts %.4f +- %.4f rad/s from psi's rate (%.3f deg/s over %.0f s)", gp->drift,
                  gp->drift_sigma, gp->drift * kDegrees, log.duration()) +
-              (told ? format(" and %.4f +- %.4f rad/s from ay / V: a gyro bias", gd->drift, gd->drift_sigma)
+              (told ? printfString(" and %.4f +- %.4f rad/s from ay / V: a gyro bias", gd->drift, gd->drift_sigma)
                     : std::string(": a gyro bias, or psi's source drifting (no ay / V here to tell which)")) +
               (course ? " (psi is a course: a body slip that grows over the log would drift it too)" : std::string()) +
               "; corrected before the fits where decided (--no-measured-corrections: reported only)");

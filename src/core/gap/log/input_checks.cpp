@@ -4,10 +4,10 @@
 #include <algorithm>
 #include <cmath>
 #include <complex>
-#include <cstdarg>
 #include <cstdio>
 
 #include "lane_keeping/common/errors.h"
+#include "lane_keeping/common/printf_string.h"
 #include "lane_keeping/gap/log/heading_agreement.h"
 #include "lane_keeping/gap/log/straight_line_steering.h"
 #include "lane_keeping/gap/log/log_signals.h"
@@ -36,18 +36,6 @@ constexpr double kHeadingMotion = 0.02;    ///< [rad]
 constexpr double kLateralMotion = 0.1;     ///< [m/s^2]
 constexpr double kTorqueMotion = 0.5;      ///< [N m]
 constexpr double kDerivativeWindow = 0.1;  ///< [s] half-width of the smoothed derivatives compared here
-
-std::string format(const char* fmt, ...) {
-  va_list args, again;
-  va_start(args, fmt);
-  va_copy(again, args);
-  const int length = std::vsnprintf(nullptr, 0, fmt, args);
-  va_end(args);
-  std::string text(length > 0 ? static_cast<std::size_t>(length) : 0, '\0');
-  if (length > 0) std::vsnprintf(text.data(), text.size() + 1, fmt, again);
-  va_end(again);
-  return text;
-}
 
 double mean(const std::vector<double>& v) {
   double sum = 0.0;
@@ -140,12 +128,12 @@ class Checker {
     const char* unit = step_ < 200.0 ? "milliseconds" : (step_ < 2e5 ? "microseconds" : "nanoseconds");
     const char* key = step_ < 200.0 ? "ms" : (step_ < 2e5 ? "us" : "ns");
     add("t", "units",
-        format("a median step of %.3g s (%.3g Hz) over %.4g s: no car log is sampled this slowly; the time column "
+        printfString("a median step of %.3g s (%.3g Hz) over %.4g s: no car log is sampled this slowly; the time column "
                "looks like %s (log mapping: `log: time: {unit: %s}`)",
                step_, 1.0 / step_, span, unit, key));
     if (span > kRefusedSpan) {
       add("t", "span",
-          format("refused: read as seconds, the log spans %.4g s (%.2g h) at %.3g Hz: each noise-only draw would "
+          printfString("refused: read as seconds, the log spans %.4g s (%.2g h) at %.3g Hz: each noise-only draw would "
                  "simulate the closed loop over all of it, and no replay can run at that rate; if the time column "
                  "is in %s, say so in the log mapping: `log: time: {unit: %s}`",
                  span, span / 3600.0, 1.0 / step_, unit, key))
@@ -164,7 +152,7 @@ class Checker {
         continue;
       }
       InputCheck& c = add("t", "hole",
-                          format("no samples for %.3g s (%.0f median steps) from %.4g s to %.4g s after the log's "
+                          printfString("no samples for %.3g s (%.0f median steps) from %.4g s to %.4g s after the log's "
                                  "start: the replays start again after it instead of integrating across it",
                                  h.t1 - h.t0, (h.t1 - h.t0) / step_, since(h.t0), since(h.t1)));
       c.t0 = h.t0;
@@ -172,7 +160,7 @@ class Checker {
     }
     if (found.size() > kListedHoles) {
       add("t", "hole",
-          format("%zu more holes (%.3g s in all), handled alike", found.size() - kListedHoles, rest));
+          printfString("%zu more holes (%.3g s in all), handled alike", found.size() - kListedHoles, rest));
     }
   }
 
@@ -188,14 +176,14 @@ class Checker {
       const Modes m = steeringLoopModes(config_);
       if (m.slow > 0.0 && nyquist < m.slow) {
         add("t", "rate",
-            format("at %.3g Hz (Nyquist %.3g Hz) the steering loop's modes (%.3g and %.3g Hz: J_F s^2 + k_d s + k_p = "
+            printfString("at %.3g Hz (Nyquist %.3g Hz) the steering loop's modes (%.3g and %.3g Hz: J_F s^2 + k_d s + k_p = "
                    "0, p = %g) are not sampled: the steering and actuator replays cannot resolve the loop and are "
                    "skipped%s",
                    rate, nyquist, m.slow, m.fast, config_.actuator.p, time_hint.c_str()))
             .skip = {"steering", "actuator"};
       } else if (m.fast > 0.0 && nyquist < m.fast) {
         add("t", "rate",
-            format("at %.3g Hz (Nyquist %.3g Hz) the steering loop's fast mode (%.3g Hz; the slow one %.3g Hz) is "
+            printfString("at %.3g Hz (Nyquist %.3g Hz) the steering loop's fast mode (%.3g Hz; the slow one %.3g Hz) is "
                    "aliased: the steering and actuator replays cannot resolve effects that act there (a compliant "
                    "column, a short actuation delay)",
                    rate, nyquist, m.fast, m.slow));
@@ -205,13 +193,13 @@ class Checker {
       const Modes m = chassisModes(config_, typical_speed_);
       if (m.slow > 0.0 && nyquist < m.slow) {
         add("t", "rate",
-            format("at %.3g Hz (Nyquist %.3g Hz) the chassis' modes at %.3g m/s (%.3g and %.3g Hz: the linear "
+            printfString("at %.3g Hz (Nyquist %.3g Hz) the chassis' modes at %.3g m/s (%.3g and %.3g Hz: the linear "
                    "single-track model) are not sampled: the chassis replay is skipped%s",
                    rate, nyquist, typical_speed_, m.slow, m.fast, time_hint.c_str()))
             .skip = {"chassis"};
       } else if (m.fast > 0.0 && nyquist < m.fast) {
         add("t", "rate",
-            format("at %.3g Hz (Nyquist %.3g Hz) the chassis' fast mode at %.3g m/s (%.3g Hz) is aliased: the chassis "
+            printfString("at %.3g Hz (Nyquist %.3g Hz) the chassis' fast mode at %.3g m/s (%.3g Hz) is aliased: the chassis "
                    "replay cannot resolve effects that act there (tire lag)",
                    rate, nyquist, typical_speed_, m.fast));
       }
@@ -219,13 +207,13 @@ class Checker {
     const double tau1 = config_.delays.pose_to_tracker;
     if (has("delta_des") && tau1 > 0.0 && step_ > tau1) {
       add("t", "rate",
-          format("a step of %.3g s is longer than the tracker's delay tau1 = %.3g s: the tracker replay cannot resolve "
+          printfString("a step of %.3g s is longer than the tracker's delay tau1 = %.3g s: the tracker replay cannot resolve "
                  "the delay it applies and is skipped%s",
                  step_, tau1, time_hint.c_str()))
           .skip = {"tracker"};
     } else if (has("delta_des") && tau1 > 0.0 && step_ > 0.5 * tau1) {
       add("t", "rate",
-          format("a step of %.3g s is more than half the tracker's delay tau1 = %.3g s: the tracker replay resolves a "
+          printfString("a step of %.3g s is more than half the tracker's delay tau1 = %.3g s: the tracker replay resolves a "
                  "sensing delay only to about a step",
                  step_, tau1));
     }
@@ -244,10 +232,10 @@ class Checker {
     if (moved >= kStuckFraction * best->expected) return;
     const double lo = *std::min_element(values.begin(), values.end());
     const double hi = *std::max_element(values.begin(), values.end());
-    const std::string held = lo == hi ? format("constant at %.6g %s", lo, unit)
-                                      : format("nearly constant (%.6g to %.6g %s, RMS %.3g)", lo, hi, unit, moved);
+    const std::string held = lo == hi ? printfString("constant at %.6g %s", lo, unit)
+                                      : printfString("nearly constant (%.6g to %.6g %s, RMS %.3g)", lo, hi, unit, moved);
     add(channel, "stuck",
-        format("%s is %s while %s implies it moves by %.3g %s RMS: a stuck sensor; every replay that reads %s is "
+        printfString("%s is %s while %s implies it moves by %.3g %s RMS: a stuck sensor; every replay that reads %s is "
                "skipped",
                channel.c_str(), held.c_str(), best->what.c_str(), best->expected, unit, channel.c_str()))
         .unusable = true;
@@ -305,7 +293,7 @@ class Checker {
       if (lo == hi && has("delta") && spread(log_.delta) > kSteeringMotion) {
         // Exactly constant while the wheel turns: in any unit, no steering torque does that.
         add("torque", "stuck",
-            format("torque is constant at %.6g while the steering angle moves by %.3g rad RMS: a stuck signal; every "
+            printfString("torque is constant at %.6g while the steering angle moves by %.3g rad RMS: a stuck signal; every "
                    "replay that reads torque is skipped",
                    lo, spread(log_.delta)))
             .unusable = true;
@@ -322,7 +310,7 @@ class Checker {
       if (travelled > 10.0 && moved < kStuckFraction * travelled) {
         for (const char* c : {"x", "y"}) {
           add(c, "stuck",
-              format("the position moves %.3g m while the logged speed covers %.4g m: a stuck localisation; every "
+              printfString("the position moves %.3g m while the logged speed covers %.4g m: a stuck localisation; every "
                      "replay that reads %s is skipped",
                      moved, travelled, c))
               .unusable = true;
@@ -341,12 +329,12 @@ class Checker {
         const double ratio = heading_rate / rate;
         if (ratio > kDegrees / 3.0 && ratio < kDegrees * 3.0) {
           add("psi", "units",
-              format("d psi / dt moves %.3g times the yaw rate: psi looks like degrees (57.3); check its unit, or its "
+              printfString("d psi / dt moves %.3g times the yaw rate: psi looks like degrees (57.3); check its unit, or its "
                      "scale in the log mapping",
                      ratio));
         } else if (ratio < 3.0 / kDegrees && ratio > 1.0 / (3.0 * kDegrees)) {
           add("yaw_rate", "units",
-              format("the yaw rate moves %.3g times d psi / dt: it looks like degrees per second (57.3); check its "
+              printfString("the yaw rate moves %.3g times d psi / dt: it looks like degrees per second (57.3); check its "
                      "unit, or its scale in the log mapping",
                      1.0 / ratio));
         }
@@ -373,7 +361,7 @@ class Checker {
         const double ratio = spread(heading) / turned;
         if (ratio > kDegrees / 3.0 && ratio < kDegrees * 3.0) {
           add("psi", "units",
-              format("psi moves %.3g times the course over ground (from x, y): it looks like degrees (57.3); check its "
+              printfString("psi moves %.3g times the course over ground (from x, y): it looks like degrees (57.3); check its "
                      "unit, or its scale in the log mapping",
                      ratio));
         }
@@ -389,7 +377,7 @@ class Checker {
           const double ratio = spread(log_.delta) / expected;
           if (ratio > kUnitsRatio) {
             add("delta", "units",
-                format("delta moves %.3g times what the yaw rate implies (l yaw_rate / V; understeer makes it 1-3 "
+                printfString("delta moves %.3g times what the yaw rate implies (l yaw_rate / V; understeer makes it 1-3 "
                        "times): a road-wheel angle in degrees would move 57-170 times, a steering-wheel angle (steer "
                        "ratio ~15) 10-50 times; check its unit, or its scale in the log mapping",
                        ratio));
@@ -410,7 +398,7 @@ class Checker {
           std::nth_element(asked.begin(), asked.begin() + static_cast<std::ptrdiff_t>(k), asked.end());
           if (asked[k] > kMaxLateralAcceleration) {
             add("delta", "units",
-                format("delta asks for a kinematic lateral acceleration V^2 delta / l of %.3g m/s^2 or more in 5 %% "
+                printfString("delta asks for a kinematic lateral acceleration V^2 delta / l of %.3g m/s^2 or more in 5 %% "
                        "of the moving samples, beyond any tire's %.0f m/s^2: it looks like degrees or a "
                        "steering-wheel angle; check its unit, or its scale in the log mapping",
                        asked[k], kMaxLateralAcceleration));
@@ -427,7 +415,7 @@ class Checker {
         const double ratio = desired / measured;
         if (ratio > kUnitFactor || ratio < 1.0 / kUnitFactor) {
           add("delta_des", "units",
-              format("delta_des moves %.3g times delta, which the actuator makes follow it: one of the two is in other "
+              printfString("delta_des moves %.3g times delta, which the actuator makes follow it: one of the two is in other "
                      "units (a steering-wheel angle: 11-20 times, degrees: 57); check their units, or their scales in "
                      "the log mapping",
                      ratio));
@@ -441,7 +429,7 @@ class Checker {
         const double ratio = spread(log_.ay) / expected;
         if (ratio > 1.0 / 20.0 && ratio < 1.0 / 5.0) {
           add("ay", "units",
-              format("ay moves %.3g times V yaw_rate: it looks like g (1 / 9.81); check its unit, or its scale in the "
+              printfString("ay moves %.3g times V yaw_rate: it looks like g (1 / 9.81); check its unit, or its scale in the "
                      "log mapping",
                      ratio));
         }
@@ -461,7 +449,7 @@ class Checker {
     const char* unit = ratio > 3.0 && ratio < 4.3 ? "km/h (3.6)" : (ratio > 1.9 && ratio < 2.6 ? "mph (2.24)" : "");
     if (!*unit) return;
     add("v", "units",
-        format("v is %.3g times the speed of the logged position: it looks like %s; check its unit, or its scale in "
+        printfString("v is %.3g times the speed of the logged position: it looks like %s; check its unit, or its scale in "
                "the log mapping",
                ratio, unit));
     speed_.assign(log_.size(), std::max(1.0, std::fabs(config_.vehicle.speed)));
@@ -497,7 +485,7 @@ class Checker {
     }
     if (not_moving > 0) {
       add("v", "speed",
-          format("v <= 0 in %zu of %zu samples (the first %.4g s after the start): the model's slip angles divide by "
+          printfString("v <= 0 in %zu of %zu samples (the first %.4g s after the start): the model's slip angles divide by "
                  "V (Beregi eq 8), so the replays that take V from the log mean nothing there",
                  not_moving, log_.size(), first));
     }
@@ -506,7 +494,7 @@ class Checker {
       const double lo = *std::min_element(log_.v.begin(), log_.v.end());
       const double hi = *std::max_element(log_.v.begin(), log_.v.end());
       add("v", "speed",
-          format("the logged speed (median %.3g, %.3g to %.3g m/s) is %.0f %% off vehicle.speed = %.3g m/s: the replays "
+          printfString("the logged speed (median %.3g, %.3g to %.3g m/s) is %.0f %% off vehicle.speed = %.3g m/s: the replays "
                  "and the closed-loop runs (noise-only null, closed-loop checks, how far) follow a logged speed that "
                  "varies, but drive at vehicle.speed where it does not; set it in the run's scenario",
                  logged, lo, hi, 100.0 * (logged / configured - 1.0), configured));

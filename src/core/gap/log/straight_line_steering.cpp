@@ -3,7 +3,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
+
+#include "lane_keeping/common/effective_samples.h"
+#include "lane_keeping/common/printf_string.h"
+#include "lane_keeping/gap/log/time_holes.h"
 
 namespace lane_keeping {
 namespace {
@@ -16,7 +19,6 @@ constexpr double kStraightRms = 0.5;
 constexpr double kStraightMeanAy = 0.3;  ///< [m/s^2]
 constexpr double kMinStraight = 2.0;        ///< [s] shorter straights are a corner's exit, not a straight line
 constexpr double kClassifyWindow = 2.0;    ///< [s] the window the classification averages over (noise, corrections)
-constexpr double kStraightHoleSteps = 5.0;         ///< a step beyond this many median steps ends a stretch
 constexpr double kDegrees = 180.0 / M_PI;
 
 /// Centred moving average over `window` seconds (by samples at the median step).
@@ -66,23 +68,26 @@ StraightLineSteering straightLineSteering(const GapLog& log, double wheelbase, d
     const double m = static_cast<double>(u.size());
     double mean = 0.0;
     for (double x : u) mean += x / m;
-    double see = 0.0, lag = 0.0;
-    for (std::size_t i = 0; i < u.size(); ++i) {
-      see += (u[i] - mean) * (u[i] - mean);
-      if (i > 0) lag += (u[i] - mean) * (u[i - 1] - mean);
+    double see = 0.0;
+    for (double& x : u) {
+      x -= mean;  // the deviations from the stretch's mean
+      see += x * x;
     }
-    const double rho = see > 0.0 ? std::clamp(lag / see, 0.0, 0.999999) : 0.0;
-    const double effective = std::clamp(m * (1.0 - rho) / (1.0 + rho), 1.0, m);
+    const double effective = effectiveSampleCount(u);
     s.offset = mean;
     s.sigma = std::sqrt(see / std::max(1.0, m - 1.0) / effective);
     s.course = course / m;
     out.stretches.push_back(s);
   };
+  // A straight ends at a hole in the time axis (time_holes.h) as it ends where the car turns.
+  std::vector<char> after_hole(n, 0);
+  for (const auto& [begin, end] : holeFreeStretches(log.t)) {
+    if (begin > 0) after_hole[begin] = 1;
+  }
   std::size_t first = 0;
   bool in = false;
   for (std::size_t i = 0; i < n; ++i) {
-    const bool hole = i > 0 && log.t[i] - log.t[i - 1] > kStraightHoleSteps * step;
-    if (in && (hole || !straight(i))) {
+    if (in && (after_hole[i] || !straight(i))) {
       close(first, i);
       in = false;
     }
@@ -112,20 +117,17 @@ StraightLineSteering straightLineSteering(const GapLog& log, double wheelbase, d
 std::vector<InputCheck> straightLineSteeringChecks(const GapLog& log, double wheelbase, double yaw_rate_bias) {
   const StraightLineSteering s = straightLineSteering(log, wheelbase, yaw_rate_bias);
   if (!s.found) return {};
-  char buffer[512];
-  std::snprintf(buffer, sizeof buffer,
-                "the car goes straight with the road wheels at %+.2f +- %.2f mrad (%+.2f deg) over %zu straight%s of %.1f "
-                "s and more (its course, psi,",
-                1e3 * s.offset, 1e3 * s.sigma, s.offset * kDegrees, s.stretches.size(), s.stretches.size() == 1 ? "" : "s",
-                kMinStraight);
-  std::string detail = buffer;
+  std::string detail = printfString(
+      "the car goes straight with the road wheels at %+.2f +- %.2f mrad (%+.2f deg) over %zu straight%s of %.1f s and "
+      "more (its course, psi,",
+      1e3 * s.offset, 1e3 * s.sigma, s.offset * kDegrees, s.stretches.size(), s.stretches.size() == 1 ? "" : "s",
+      kMinStraight);
   for (std::size_t k = 0; k < s.stretches.size(); ++k) {
     const StraightStretch& t = s.stretches[k];
     // The course as a compass reads it would need the map's north; the log's psi is what there is.
-    std::snprintf(buffer, sizeof buffer, "%s %.0f deg (%.1f-%.1f s: %+.2f mrad)", k == 0 ? "" : ",",
-                  std::round(std::remainder(t.course, 2.0 * M_PI) * kDegrees) + 0.0, t.t0 - log.t.front(), t.t1 - log.t.front(),
-                  1e3 * t.offset);
-    detail += buffer;
+    detail += printfString("%s %.0f deg (%.1f-%.1f s: %+.2f mrad)", k == 0 ? "" : ",",
+                           std::round(std::remainder(t.course, 2.0 * M_PI) * kDegrees) + 0.0, t.t0 - log.t.front(),
+                           t.t1 - log.t.front(), 1e3 * t.offset);
   }
   detail += ")";
   double lo = INFINITY, hi = -INFINITY;
@@ -133,12 +135,11 @@ std::vector<InputCheck> straightLineSteeringChecks(const GapLog& log, double whe
   const double apart = (hi - lo) * kDegrees;
   detail += ": a steering sensor's zero, or a pull the single-track model lacks (tire conicity, an alignment's split), "
             "which the model reads alike as sensor_offset (steering_angle), or a steady side force";
-  std::snprintf(buffer, sizeof buffer,
-                apart > 90.0 ? " (a crosswind would change sign with the direction of travel: these straights run %.0f "
+  detail += printfString(apart > 90.0
+                             ? " (a crosswind would change sign with the direction of travel: these straights run %.0f "
                                "deg apart and agree, so not a crosswind)"
                              : " such as a crosswind (these straights run within %.0f deg of each other: not told apart)",
-                apart);
-  detail += buffer;
+                         apart);
   detail += "; reported, not corrected";
   return {inputCheck(log.source, "delta", "offset", detail)};
 }
