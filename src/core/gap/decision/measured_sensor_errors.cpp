@@ -8,6 +8,7 @@
 #include <set>
 
 #include "lane_keeping/common/brief_number.h"
+#include "lane_keeping/gap/fit/candidate_effects.h"
 
 namespace lane_keeping {
 namespace diagnosis {
@@ -36,9 +37,15 @@ std::vector<std::string> measuredSensorErrorNotes(const GapReport& report) {
     if (named.count(label) || !said.insert(label).second) continue;
     std::size_t logs = 0;
     for (const InputCheckEntry& d : report.input_checks) logs += d.kind == c.kind && d.channel == c.channel;
+    // A psi or a_y scale is no candidate's (the sensor candidates scale the yaw rate and the steering angle):
+    // the note says so rather than name a label no fit could have.
+    const bool candidate = std::any_of(candidateEffects().begin(), candidateEffects().end(),
+                                       [&](const CandidateEffect& e) { return e.label() == label; });
+    const std::string missing = candidate ? label + " is not among them"
+                                          : "no candidate models a " + c.kind + " error of " + c.channel;
     out.push_back("measured before any model: the input checks find a " + c.kind + " error on " + c.channel + " (" +
                   std::to_string(logs) + (logs == 1 ? " log" : " logs") + "; " + c.log + ": " + c.detail +
-                  ") that the verdict's effects do not hold (" + label + " is not among them): they may stand in "
+                  ") that the verdict's effects do not hold (" + missing + "): they may stand in "
                   "for it; correct the log (the log mapping's scale or offset of " + c.channel +
                   ") and diagnose again");
   }

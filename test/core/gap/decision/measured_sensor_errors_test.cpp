@@ -48,12 +48,23 @@ TEST(MeasuredSensorErrors, NothingWhereTheVerdictHoldsItOrNothingWasMeasured) {
   EXPECT_TRUE(measuredSensorErrorNotes(r).empty());
   r.input_checks = {check("run.csv", "t", "hole"), check("run.csv", "delta", "stuck")};
   EXPECT_TRUE(measuredSensorErrorNotes(r).empty());
-  // A heading's scale maps to the candidates' `heading` form, the accelerometer's to `lateral_acceleration`.
-  r.input_checks = {check("run.csv", "psi", "scale"), check("run.csv", "ay", "scale")};
-  r.verdict.effects = {effect("sensor_scale", "heading")};
+}
+
+// A heading's or an accelerometer's scale is no candidate's (the sensor candidates scale the yaw rate and the
+// steering angle): the note says no candidate models it, and names no label a fit could not have.
+TEST(MeasuredSensorErrors, AScaleNoCandidateModelsIsSaidSoNotNamedAsACandidate) {
+  GapReport r;
+  r.input_checks = {check("run.csv", "psi", "scale"), check("run.csv", "ay", "scale"), check("run.csv", "delta", "scale")};
+  r.verdict.effects = {effect("cornering_stiffness", "")};
   const auto notes = measuredSensorErrorNotes(r);
-  ASSERT_EQ(notes.size(), 1u);
-  EXPECT_NE(notes[0].find("sensor_scale (lateral_acceleration)"), std::string::npos) << notes[0];
+  ASSERT_EQ(notes.size(), 3u);
+  EXPECT_NE(notes[0].find("no candidate models a scale error of psi"), std::string::npos) << notes[0];
+  EXPECT_NE(notes[1].find("no candidate models a scale error of ay"), std::string::npos) << notes[1];
+  EXPECT_NE(notes[2].find("sensor_scale (steering_angle) is not among them"), std::string::npos) << notes[2];
+  for (const auto& note : notes) {
+    EXPECT_EQ(note.find("sensor_scale (heading)"), std::string::npos) << note;
+    EXPECT_EQ(note.find("sensor_scale (lateral_acceleration)"), std::string::npos) << note;
+  }
 }
 
 TEST(MeasuredSensorErrors, TheMeasuredErrorLeadsWhereItRemovesMostAndTheSharesAreOfTheGapAsLogged) {
