@@ -6,8 +6,9 @@
 /// chosen so far — each run's configuration with those effects applied is the new nominal — and the best
 /// one is added if it earns its place on held-out data, as the leader had to:
 ///  * what the effects so far leave is still a gap: its total excess lies above every noise-only draw's
-///    (the Monte Carlo test of noise_null.h, at the same false-alarm rate), else there is nothing more
-///    to explain;
+///    (the Monte Carlo test of noise_null.h, at the same false-alarm rate), both the nominal's and those
+///    of the model with the effects so far (what noise leaves through that model), else there is nothing
+///    more to explain;
 ///  * the added effect removes at least `min_further_shrink` (10 %) of what is left and at least
 ///    `min_effect_share` (2 %) of the original gap, and lowers the total excess by more than the
 ///    noise-only draws' spread (noise_null.h heldSpread);
@@ -33,6 +34,9 @@ struct ForwardSelection {
   double gap_after = 0.0;              ///< held-out gap with every named effect
   ConfigChange change;                 ///< all of them, as a change of any run's configuration
   SimConfig corrected;                 ///< the shared nominal with all of them
+  /// What the effects leave is beyond the nominal's noise-only draws but within the draws of the model
+  /// with them (a complete explanation, as a chain leaving no net gap is: sensor_led_selection.h).
+  bool complete = false;
   std::vector<std::string> notes;      ///< why the selection stopped
   std::vector<std::pair<std::string, double>> wall_seconds;  ///< per round
 };

@@ -36,6 +36,8 @@ struct FitContext {
   /// Where a fit may start near its optimum (a further effect fitted on top of others, whose parameters
   /// alone are known: forward_selection.h), by CandidateEffect::label: warmStartFit instead of the search.
   const std::map<std::string, std::vector<double>>* warm_start = nullptr;
+  /// A warm-started fit's Levenberg-Marquardt steps on all the data (warmStartFit).
+  int warm_final_steps = search::kFinalPolishSteps;
 };
 
 struct CandidateFit {
@@ -109,8 +111,9 @@ std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::si
 
 /// The fit from `theta`, a point near the optimum: a profile effect's line search over the narrowed range
 /// of each parameter (narrowedRange), a smooth one's Levenberg-Marquardt polish on the coarse data and one
-/// step on all of it. A third to a half of leastSquaresFit's work.
-std::vector<double> warmStartFit(const CandidateObjective& objective, std::vector<double> theta, std::size_t coarse_stride);
+/// step on all of it (`final_steps` steps). A third to a half of leastSquaresFit's work.
+std::vector<double> warmStartFit(const CandidateObjective& objective, std::vector<double> theta, std::size_t coarse_stride,
+                                 int final_steps = search::kFinalPolishSteps);
 
 /// Whether a fit `theta` of `effect` (standard errors `sigma`, NaN where unknown) has a parameter pinned at a
 /// bound of its range: one within 1 % of the range of a bound (on the log axis for a log-scale parameter)

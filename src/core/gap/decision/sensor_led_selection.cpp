@@ -69,6 +69,10 @@ bool sensorChainMayLead(const ForwardSelection& physical, double first_share, do
     return no("the physical leader's chain leaves nothing beyond the noise-only reference (held-out gap " +
               briefNumber(physical.gap_after) + ")");
   }
+  if (physical.complete) {
+    return no("what the physical leader's chain leaves (held-out gap " + briefNumber(physical.gap_after) +
+              ") is within the noise-only draws of its own model");
+  }
   return true;
 }
 

@@ -454,7 +454,8 @@ std::vector<double> leastSquaresFit(const CandidateObjective& objective, std::si
   return polished;
 }
 
-std::vector<double> warmStartFit(const CandidateObjective& objective, std::vector<double> theta, std::size_t coarse_stride) {
+std::vector<double> warmStartFit(const CandidateObjective& objective, std::vector<double> theta, std::size_t coarse_stride,
+                                 int final_steps) {
   const auto& params = objective.effect().params;
   if (objective.effect().profile) {
     double loss = objective.loss(theta);
@@ -468,7 +469,7 @@ std::vector<double> warmStartFit(const CandidateObjective& objective, std::vecto
     const std::vector<Dataset> coarse = coarseFitData(objective.data(), objective.replayOptions().chassis_horizon, coarse_stride);
     theta = polish(objective.on(coarse), theta, search::kSearchPolishSteps);
   }
-  return polish(objective, theta, search::kFinalPolishSteps);
+  return polish(objective, theta, final_steps);
 }
 
 bool pinnedAtBound(const CandidateEffect& effect, const std::vector<double>& theta, const std::vector<double>& sigma) {
@@ -587,7 +588,7 @@ CandidateFit fitCandidate(const CandidateEffect& effect, const FitContext& conte
       if (it != context.warm_start->end() && it->second.size() == effect.params.size()) start = &it->second;
     }
     if (start != nullptr) {
-      theta = warmStartFit(objective, *start, options.coarse_fit_stride);
+      theta = warmStartFit(objective, *start, options.coarse_fit_stride, context.warm_final_steps);
     } else {
       theta = leastSquaresFit(objective, options.coarse_fit_stride, &fit.note);
     }

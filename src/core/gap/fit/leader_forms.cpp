@@ -114,6 +114,7 @@ CandidateFit refitLeaderForm(const CandidateFit& leader, const FitContext& conte
     const std::map<std::string, std::vector<double>> warm{{form.label(), start}};
     FitContext from_leader = context;
     from_leader.warm_start = &warm;
+    from_leader.warm_final_steps = search::kLeaderFormPolishSteps;
     CandidateFit fit;
     try {
       fit = fitCandidate(form, from_leader, options);

@@ -105,13 +105,27 @@ TEST(SensorLedSelection, OnlyACompleteSensorExplanationDisplacesAnIncompletePhys
 // that shortcut must go.
 TEST(SensorLedSelection, NoSensorChainLeadsACompletePhysicalOneSoNoneIsFittedThen) {
   const ForwardSelection complete = chain({effect("steering_friction", 1.0e5, 3, false, 0.9)}, 0.0);
-  for (const double gap : {0.0, 0.1}) {
-    for (const double evidence : {1.0e3, 1.0e5, 1.0e9}) {
-      const ForwardSelection sensors =
-          chain({effect("sensor_latency", evidence, 1, true, 0.6), effect("sensor_offset", evidence, 1, true, 0.4)}, gap);
-      EXPECT_FALSE(sensorsLead(complete, sensors, 1.0, options(), nullptr)) << gap << " " << evidence;
+  // Complete also where what it leaves lies within the draws of its own model (forward_selection.h), though
+  // beyond the nominal's reference.
+  ForwardSelection within_own_draws = chain({effect("steering_friction", 1.0e5, 3, false, 0.96)}, 0.04);
+  within_own_draws.complete = true;
+  for (const ForwardSelection* physical : std::vector<const ForwardSelection*>{&complete, &within_own_draws}) {
+    std::string why_not;
+    EXPECT_FALSE(sensorChainMayLead(*physical, 0.6, 1.0, options(), &why_not));
+    EXPECT_FALSE(why_not.empty());
+    for (const double gap : {0.0, 0.1}) {
+      for (const double evidence : {1.0e3, 1.0e5, 1.0e9}) {
+        const ForwardSelection sensors =
+            chain({effect("sensor_latency", evidence, 1, true, 0.6), effect("sensor_offset", evidence, 1, true, 0.4)}, gap);
+        EXPECT_FALSE(sensorsLead(*physical, sensors, 1.0, options(), nullptr)) << gap << " " << evidence;
+      }
     }
   }
+  // The same chain not complete by its own draws may be displaced by a complete sensor chain.
+  within_own_draws.complete = false;
+  const ForwardSelection sensors =
+      chain({effect("sensor_latency", 1.0e9, 1, true, 0.6), effect("sensor_offset", 1.0e9, 1, true, 0.4)}, 0.0);
+  EXPECT_TRUE(sensorsLead(within_own_draws, sensors, 1.0, options(), nullptr));
 }
 
 // The chain is not fitted where sensorChainMayLead says it cannot lead (diagnosis.cpp: the 1 kHz bench's
