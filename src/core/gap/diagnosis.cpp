@@ -355,6 +355,14 @@ GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRu
   }
   context.pinned = pinnedEffects(fits);
   context.pinned_within_noise = pinnedWithinNoise(report.ranking, context.pinned, null, gap_before);
+  for (const auto& fit : fits) {
+    if (!fit.ok || !fit.at_bound_everywhere) continue;
+    std::string fitted;
+    for (std::size_t i = 0; i < fit.theta.size() && i < fit.effect->params.size(); ++i) {
+      fitted += (i ? ", " : "") + fit.effect->params[i].name + " " + briefNumber(fit.theta[i]);
+    }
+    context.pinned_everywhere[fit.effect->label()] = fitted;
+  }
   context.where = &report.where;
   context.gap_before = gap_before;
   context.detection = report.detection;

@@ -48,6 +48,7 @@ struct CandidateFit {
   std::string implausible;
   std::vector<double> theta, sigma;
   bool at_bound = false;  ///< a fitted parameter is pinned at a bound of its range (pinnedAtBound)
+  bool at_bound_everywhere = false;  ///< every fitted parameter is (pinnedParameterCount)
   std::string stability_note;  ///< set when the least-squares fit's closed loop leaves the logged bounds
   /// Logs on which the fit's closed loop leaves the bounds (empty: it stays bounded, also after a
   /// bounded refit that succeeded).
@@ -123,6 +124,9 @@ std::vector<double> warmStartFit(const CandidateObjective& objective, std::vecto
 /// its bound was not, however wide the range: a 2.8 ms steering-angle latency +- 0.07 ms lies within 1 %
 /// of its 0-0.3 s range, and is 41 standard errors from a latency of nil.
 bool pinnedAtBound(const CandidateEffect& effect, const std::vector<double>& theta, const std::vector<double>& sigma);
+/// How many of the fit's parameters are pinned so (pinnedAtBound is this > 0).
+std::size_t pinnedParameterCount(const CandidateEffect& effect, const std::vector<double>& theta,
+                                 const std::vector<double>& sigma);
 
 /// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta (`objective`
 /// over `context.train`, its replays the training scores). Its p + 2 replays run on `threads` threads (the

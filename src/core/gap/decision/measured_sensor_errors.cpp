@@ -98,6 +98,19 @@ void withMeasuredErrors(GapReport* report, const std::vector<MeasuredSensorError
   const std::string before = "measured before any model, and corrected before the diagnosis: " + what +
                              "; the held-out gap as logged " + briefNumber(gap_as_logged) + ", with the correction " +
                              briefNumber(gap_corrected);
+  if (!named && !(measured_share > 0.0)) {
+    // Nothing explains the gap, and the correction does not shrink it either: the measured errors are facts
+    // about the sensors, not the gap's cause (the race car's lap 6: its gyro's 0.829, measured as on its other
+    // laps, raises the held-out gap 0.626 -> 0.773). The verdict stays unexplained; the reason and a note say
+    // what was measured and corrected.
+    v.reason = before + " (the correction does not shrink the gap, so it names no cause of it); with it corrected: " + v.reason;
+    v.gap_before = v.gap_after = gap_as_logged;  // nothing named: nothing removed, as in any unexplained verdict
+    v.shrink = 0.0;
+    report->notes.push_back("measured before any model and corrected before the fits: " + what +
+                            "; it does not shrink the held-out gap (as logged " + briefNumber(gap_as_logged) +
+                            ", with the correction " + briefNumber(gap_corrected) + "): a sensor fact, not the gap's cause");
+    return;
+  }
   if (!named || measured_share >= leader_share) {
     // The measured errors lead: the first of them is the verdict's effect.
     std::stable_partition(effects.begin(), effects.end(), [](const VerdictEffect& e) { return e.measured; });

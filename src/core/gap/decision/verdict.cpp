@@ -79,6 +79,14 @@ std::set<std::string> pinnedEffects(const std::vector<CandidateFit>& fits) {
   return pinned;
 }
 
+std::set<std::string> pinnedEverywhere(const std::vector<CandidateFit>& fits) {
+  std::set<std::string> pinned;
+  for (const auto& fit : fits) {
+    if (fit.ok && fit.at_bound_everywhere) pinned.insert(fit.effect->label());
+  }
+  return pinned;
+}
+
 std::set<std::string> pinnedWithinNoise(const std::vector<RankedEffect>& ranking, const std::set<std::string>& pinned,
                                         const NoiseNull& null, double gap_before) {
   std::set<std::string> out;
@@ -123,8 +131,10 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
   };
   GapVerdict v;
   v.gap_before = gap_before;
+  std::set<std::string> never_win = context.pinned_within_noise;
+  for (const auto& [label, fitted] : context.pinned_everywhere) never_win.insert(label);
   const WinnerSelection selection = selectWinner(ranking, changesWhere, context.pinned, options.min_shrink,
-                                                 options.min_evidence_per_parameter, context.pinned_within_noise);
+                                                 options.min_evidence_per_parameter, never_win);
   const RankedEffect* top = selection.top;
   const RankedEffect* best = selection.winner;
   const RankedEffect* second = selection.runner_up;
@@ -218,6 +228,11 @@ GapVerdict decideVerdict(const std::vector<RankedEffect>& ranking, const Verdict
              << " per parameter)";
       if (context.pinned_within_noise.count(top->label())) {
         reason << "; its fit is pinned at a bound of its range and improves the gap by less than the noise-only spread";
+      }
+      const auto everywhere = context.pinned_everywhere.find(top->label());
+      if (everywhere != context.pinned_everywhere.end()) {
+        reason << "; its fit runs to a bound of the range of every parameter it fits (" << everywhere->second
+               << "): the data place none of them, and a candidate stretched so far stands in for something it is not";
       }
     }
   } else {

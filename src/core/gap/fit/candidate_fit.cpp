@@ -473,6 +473,12 @@ std::vector<double> warmStartFit(const CandidateObjective& objective, std::vecto
 }
 
 bool pinnedAtBound(const CandidateEffect& effect, const std::vector<double>& theta, const std::vector<double>& sigma) {
+  return pinnedParameterCount(effect, theta, sigma) > 0;
+}
+
+std::size_t pinnedParameterCount(const CandidateEffect& effect, const std::vector<double>& theta,
+                                 const std::vector<double>& sigma) {
+  std::size_t pinned = 0;
   for (std::size_t i = 0; i < theta.size() && i < effect.params.size(); ++i) {
     const auto& p = effect.params[i];
     const double span = p.log_scale ? std::log(p.upper / p.lower) : (p.upper - p.lower);
@@ -482,9 +488,9 @@ bool pinnedAtBound(const CandidateEffect& effect, const std::vector<double>& the
     if (!(distance < 0.01 * span)) continue;
     // The standard error on the axis the distance is measured on (d log theta = d theta / theta).
     const double s = i < sigma.size() ? (p.log_scale ? sigma[i] / std::fabs(theta[i]) : sigma[i]) : kNaN;
-    if (!std::isfinite(s) || distance < 3.0 * s || distance < 0.001 * span) return true;
+    if (!std::isfinite(s) || distance < 3.0 * s || distance < 0.001 * span) ++pinned;
   }
-  return false;
+  return pinned;
 }
 
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
@@ -551,7 +557,9 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
     }
   }
 
-  fit.at_bound = pinnedAtBound(effect, theta, fit.sigma);
+  const std::size_t pinned = pinnedParameterCount(effect, theta, fit.sigma);
+  fit.at_bound = pinned > 0;
+  fit.at_bound_everywhere = pinned > 0 && pinned == theta.size();
   fit.implausible = implausibleMagnitude(effect, theta, fit.corrected, options.max_side_force);
 
   // Scores: training and held-out, all subsystems (unchanged ones keep their nominal scores).

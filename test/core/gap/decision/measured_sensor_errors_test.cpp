@@ -115,6 +115,44 @@ TEST(MeasuredSensorErrors, TheMeasuredErrorLeadsWhereItRemovesMostAndTheSharesAr
   EXPECT_TRUE(std::isnan(led.verdict.effects[0].evidence));
 }
 
+// Where nothing explains the gap and the correction does not shrink it, the measured error is a fact about the
+// sensor, not the gap's cause: the verdict stays unexplained (the race car's lap 6: its gyro's 0.829 raised the
+// held-out gap 0.626 -> 0.773, and was named the verdict with a shrink of -23 %).
+TEST(MeasuredSensorErrors, ACorrectionThatDoesNotShrinkTheGapNamesNoCause) {
+  MeasuredSensorError gyro;
+  gyro.effect = "sensor_scale";
+  gyro.form = "yaw_rate";
+  gyro.parameter = "scale";
+  gyro.key = "sensors.yaw_rate_scale";
+  gyro.value = 0.829;
+  gyro.sigma = 0.015;
+  gyro.logs = 1;
+  gyro.detail = "the gyro reads 0.829";
+  for (const double corrected : {0.773, 0.5}) {
+    GapReport r;
+    r.verdict.effect = "unexplained";
+    r.verdict.reason = "a gap that no candidate explains";
+    r.verdict.gap_before = r.verdict.gap_after = 0.8247;
+    withMeasuredErrors(&r, {gyro}, 0.626, corrected);
+    if (corrected > 0.626) {
+      EXPECT_EQ(r.verdict.effect, "unexplained") << r.verdict.reason;
+      EXPECT_TRUE(r.verdict.effects.empty());
+      EXPECT_DOUBLE_EQ(r.verdict.gap_before, 0.626);
+      EXPECT_DOUBLE_EQ(r.verdict.gap_after, 0.626);
+      EXPECT_DOUBLE_EQ(r.verdict.shrink, 0.0);
+      EXPECT_NE(r.verdict.reason.find("the correction does not shrink the gap, so it names no cause of it"),
+                std::string::npos)
+          << r.verdict.reason;
+      ASSERT_FALSE(r.notes.empty());
+      EXPECT_NE(r.notes.back().find("a sensor fact, not the gap's cause"), std::string::npos) << r.notes.back();
+    } else {
+      // Where it does shrink it, the measured error leads (as before).
+      EXPECT_EQ(r.verdict.effect, "sensor_scale") << r.verdict.reason;
+      EXPECT_NEAR(r.verdict.shrink, 1.0 - 0.5 / 0.626, 1e-12);
+    }
+  }
+}
+
 TEST(MeasuredSensorErrors, AGyroBiasMeasuredBeforeAnyModelIsCorrectedAndNamed) {
   // The independent family's gyro bias on the bend (0.008 rad/s), one 100 Hz log in blocks.
   BenchmarkCase c;

@@ -79,6 +79,28 @@ TEST(Verdict, APinnedFitInsideTheNoiseOnlySpreadNeverWins) {
   EXPECT_NE(v.reason.find("less than the noise-only spread"), std::string::npos) << v.reason;
 }
 
+// A fit pinned on some of its parameters may win where nothing unpinned qualifies (the data may fix only a
+// combination of them); one pinned on every parameter is placed by the data nowhere, and never wins (the race
+// car's lap 6: inertia at cg_forward 0.3, mass_scale 0.5, yaw_scale 5, the ends of all three ranges, and a
+// steering scale at 2, the end of its range, were named with confidence 0.19).
+TEST(Verdict, AFitPinnedOnEveryParameterNeverWins) {
+  Fixture f(true, true);
+  f.context.pinned = {"inertia", "sensor_scale (steering_angle)"};
+  RankedEffect scale = candidate("sensor_scale", 0.52, 5e5);
+  scale.form = "steering_angle";
+  const std::vector<RankedEffect> ranking{candidate("inertia", 0.57, 5e5, 3), scale};
+  EXPECT_EQ(decideVerdict(ranking, f.context, DiagnosisOptions{}).effect, "inertia");  // pinned on some: may win
+  f.context.pinned_everywhere = {{"inertia", "p0 0.3, p1 0.5, p2 5"}};
+  EXPECT_EQ(decideVerdict(ranking, f.context, DiagnosisOptions{}).effect, "sensor_scale");
+  f.context.pinned_everywhere["sensor_scale (steering_angle)"] = "scale 2";
+  const GapVerdict v = decideVerdict(ranking, f.context, DiagnosisOptions{});
+  EXPECT_EQ(v.effect, "unexplained");
+  EXPECT_NE(v.reason.find("the best candidate that changes it, inertia, removes 57 %"), std::string::npos) << v.reason;
+  EXPECT_NE(v.reason.find("its fit runs to a bound of the range of every parameter it fits (p0 0.3, p1 0.5, p2 5)"),
+            std::string::npos)
+      << v.reason;
+}
+
 TEST(Verdict, HalfAnExplanationIsNamedAsSuchNotAsTheCause) {
   Fixture f(true, true);
   f.context.partial_of = [](const RankedEffect& r) {

@@ -51,6 +51,27 @@ TEST(PinnedAtBound, AFitTheDataPlaceOffItsBoundIsNotPinnedHoweverWideTheRange) {
   EXPECT_TRUE(diagnosis::pinnedAtBound(latency, {0.2975}, {1.0e-3}));
 }
 
+// Every parameter pinned, or some (verdict.h pinnedEverywhere: only a fit pinned on all never wins).
+TEST(PinnedAtBound, ThePinnedParametersAreCountedEachOnItsOwnAxis) {
+  const CandidateEffect& inertia = candidateEffect("inertia");
+  ASSERT_EQ(inertia.params.size(), 3u);
+  std::vector<double> lower, upper, middle;
+  for (const auto& p : inertia.params) {
+    lower.push_back(p.lower);
+    upper.push_back(p.upper);
+    middle.push_back(p.log_scale ? std::sqrt(p.lower * p.upper) : 0.5 * (p.lower + p.upper));
+  }
+  const std::vector<double> nan(3, std::numeric_limits<double>::quiet_NaN());
+  EXPECT_EQ(diagnosis::pinnedParameterCount(inertia, lower, nan), 3u);
+  EXPECT_EQ(diagnosis::pinnedParameterCount(inertia, upper, nan), 3u);
+  EXPECT_EQ(diagnosis::pinnedParameterCount(inertia, middle, nan), 0u);
+  std::vector<double> mixed = middle;
+  mixed[1] = upper[1];
+  EXPECT_EQ(diagnosis::pinnedParameterCount(inertia, mixed, nan), 1u);
+  EXPECT_TRUE(diagnosis::pinnedAtBound(inertia, mixed, nan));
+  EXPECT_FALSE(diagnosis::pinnedAtBound(inertia, middle, nan));
+}
+
 // The independent family's 2.5 ms steering-angle latency on a quantised bus: its latency fit (2.8 ms, 100 % of the
 // held-out gap) was flagged pinned, and an actuation delay that imitates it (75 %) was named.
 TEST(PinnedAtBound, AFewMillisecondsOfSteeringAngleLatencyOnABusAreNamedNotAnActuationDelay) {
