@@ -28,6 +28,19 @@ VerdictEffect effect(const std::string& name, const std::string& form) {
   return e;
 }
 
+MeasuredSensorError gyroScale(double value, double sigma, std::size_t logs) {
+  MeasuredSensorError m;
+  m.effect = "sensor_scale";
+  m.form = "yaw_rate";
+  m.parameter = "scale";
+  m.key = "sensors.yaw_rate_scale";
+  m.value = value;
+  m.sigma = sigma;
+  m.logs = logs;
+  m.detail = "the gyro reads " + std::to_string(value);
+  return m;
+}
+
 TEST(MeasuredSensorErrors, AGyroScaleTheVerdictDoesNotNameIsSaidOnceForAllLogs) {
   GapReport r;
   r.input_checks = {check("lap6.csv", "yaw_rate", "scale"), check("lap7.csv", "yaw_rate", "scale"),
@@ -68,14 +81,7 @@ TEST(MeasuredSensorErrors, AScaleNoCandidateModelsIsSaidSoNotNamedAsACandidate) 
 }
 
 TEST(MeasuredSensorErrors, TheMeasuredErrorLeadsWhereItRemovesMostAndTheSharesAreOfTheGapAsLogged) {
-  MeasuredSensorError m;
-  m.effect = "sensor_scale";
-  m.form = "yaw_rate";
-  m.parameter = "scale";
-  m.key = "sensors.yaw_rate_scale";
-  m.value = 0.84;
-  m.sigma = 0.01;
-  m.logs = 3;
+  const MeasuredSensorError m = gyroScale(0.84, 0.01, 3);
   // The diagnosis of the corrected logs named a side force removing 90 % of its gap (0.5 -> 0.05).
   GapReport r;
   r.verdict.effect = "lateral_disturbance";
@@ -119,15 +125,7 @@ TEST(MeasuredSensorErrors, TheMeasuredErrorLeadsWhereItRemovesMostAndTheSharesAr
 // sensor, not the gap's cause: the verdict stays unexplained (the race car's lap 6: its gyro's 0.829 raised the
 // held-out gap 0.626 -> 0.773, and was named the verdict with a shrink of -23 %).
 TEST(MeasuredSensorErrors, ACorrectionThatDoesNotShrinkTheGapNamesNoCause) {
-  MeasuredSensorError gyro;
-  gyro.effect = "sensor_scale";
-  gyro.form = "yaw_rate";
-  gyro.parameter = "scale";
-  gyro.key = "sensors.yaw_rate_scale";
-  gyro.value = 0.829;
-  gyro.sigma = 0.015;
-  gyro.logs = 1;
-  gyro.detail = "the gyro reads 0.829";
+  const MeasuredSensorError gyro = gyroScale(0.829, 0.015, 1);
   for (const double corrected : {0.773, 0.5}) {
     GapReport r;
     r.verdict.effect = "unexplained";
