@@ -4,6 +4,7 @@
 // input, lose a report or run a shell command.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
@@ -99,6 +100,31 @@ TEST(ToolOptions, NumbersAreReadWholeOrRefusedWithStatus2) {
   EXPECT_REFUSED(tool("lk_gap_benchmark", {"generate", "--out", dir.string(), "--family", "mine"}), 2,
                  "benchmark family 'mine' is unknown");
   EXPECT_REFUSED(tool("lk_gap_benchmark", {"score", "--dir", (dir / "none").string()}), 4, "cannot open");
+  EXPECT_REFUSED(tool("lk_gap_benchmark", {"generate", "--out", dir.string(), "--noise-seed", "-3"}), 2,
+                 "--noise-seed: -3 is out of range");
+}
+
+// `generate --noise-seed K`: the same case with its noise drawn afresh (its seed + K), the rest as written: a
+// family's verdicts measured again on logs whose noise no rule was written after.
+TEST(ToolOptions, ANoiseSeedDrawsTheSameCasesNoiseAfresh) {
+  const fs::path dir = freshDir("lk_tools_noise_seed");
+  const std::string id = "none-1-straight-p500-100Hz";
+  for (const std::string k : {"0", "7"}) {
+    const ChildResult r = tool("lk_gap_benchmark", {"generate", "--out", (dir / k).string(), "--family", "independent",
+                                                    "--cases", id, "--noise-seed", k});
+    ASSERT_TRUE(r.ok()) << r.error_output;
+  }
+  const std::string a = read(dir / "0" / "logs" / (id + ".csv")), b = read(dir / "7" / "logs" / (id + ".csv"));
+  ASSERT_FALSE(a.empty());
+  EXPECT_NE(a, b);
+  EXPECT_EQ(std::count(a.begin(), a.end(), '\n'), std::count(b.begin(), b.end(), '\n'));  // the same rows
+  const std::string t0 = read(dir / "0" / "truth.json"), t7 = read(dir / "7" / "truth.json");
+  const auto seed = [](const std::string& truth) {
+    const std::size_t at = truth.find("\"seed\": ");
+    return at == std::string::npos ? -1L : std::stol(truth.substr(at + 8));
+  };
+  EXPECT_EQ(seed(t7) - seed(t0), 7);
+  EXPECT_EQ(read(dir / "0" / "cases.json"), read(dir / "7" / "cases.json"));
 }
 
 TEST(ToolOptions, TooFewNoiseDrawsAreRefusedNamingTheMinimum) {

@@ -1,8 +1,10 @@
 // lk_gap_benchmark: the withheld-effect benchmark of the gap diagnosis.
 //   lk_gap_benchmark run      --out DIR [--family F] [--cases SUBSTRING] [--threads N] [--coarse-fit-stride K]
 //                              generate + diagnose + score (K: DiagnosisOptions::coarse_fit_stride)
-//   lk_gap_benchmark generate --out DIR [--family F] [--cases SUBSTRING] [--log-rate HZ]
+//   lk_gap_benchmark generate --out DIR [--family F] [--cases SUBSTRING] [--log-rate HZ] [--noise-seed K]
 //     F: candidates (default: the family written beside the candidates) or independent (docs/gap.md)
+//     K: every case's noise drawn afresh (its seed + K; 0, the default: the family as written), the same
+//        effects, roads and set-ups: how much of a verdict is its noise draw's
 //   lk_gap_benchmark diagnose --dir DIR [--cases SUBSTRING] [--threads N] [--coarse-fit-stride K]
 //   lk_gap_benchmark ceiling  --dir DIR [--cases SUBSTRING] [--threads N]
 //   lk_gap_benchmark score    --dir DIR
@@ -139,7 +141,8 @@ std::string nominalFile(const std::string& dir, const json& c) {
   return dir + "/" + (c.contains("nominal") ? c["nominal"].get<std::string>() : "nominal/" + c["manoeuvre"].get<std::string>() + ".yaml");
 }
 
-void generate(const std::string& dir, const std::string& family, const std::string& filter, double log_rate) {
+void generate(const std::string& dir, const std::string& family, const std::string& filter, double log_rate,
+              unsigned noise_seed) {
   makeDir(dir);
   makeDir(dir + "/logs");
   makeDir(dir + "/nominal");
@@ -149,7 +152,8 @@ void generate(const std::string& dir, const std::string& family, const std::stri
     out << "# nominal configuration of the gap benchmark, manoeuvre " << m << "\n";
     benchmarkNominal(m).print(out);
   }
-  for (const auto& c : selectCases(family, filter)) {
+  for (BenchmarkCase c : selectCases(family, filter)) {
+    c.seed += noise_seed;  // the held-out run's and the further runs' seeds follow from it
     const auto start = std::chrono::steady_clock::now();
     const GapLog log = generateBenchmarkLog(c, SensorNoise{}, log_rate);
     const std::string file = "logs/" + c.id + ".csv";
@@ -573,9 +577,11 @@ int score(const std::string& dir) {
 void usage(std::ostream& out) {
   out << "usage: lk_gap_benchmark run|generate|diagnose|ceiling|score --out/--dir DIR [--family candidates|independent]\n"
          "                        [--cases SUBSTRING] [--threads N] [--coarse-fit-stride K] [--log-rate HZ]\n"
+         "                        [--noise-seed K]\n"
          "  run       generate + diagnose + ceiling + score into --out DIR\n"
          "  generate  the logs, cases.json (no truth) and truth.json into --out DIR (--log-rate: rows per second,\n"
-         "            default 500, at most the plant's 10,000)\n"
+         "            default 500, at most the plant's 10,000; --noise-seed K: every case's noise drawn afresh,\n"
+         "            its seed + K, the same effects, roads and set-ups)\n"
          "  diagnose, ceiling, score   on --dir DIR, as generate wrote it\n"
          "  --threads N (1-256, default 2), --coarse-fit-stride K (1-1000, default 3)\n"
          "exit status: 0 ok, 2 bad arguments (an unknown command, option or family, a value that is not a number\n"
@@ -593,6 +599,7 @@ int main(int argc, char** argv) {
   int threads = 2;
   std::size_t coarse_fit_stride = DiagnosisOptions{}.coarse_fit_stride;
   double log_rate = 500.0;
+  unsigned noise_seed = 0;
   try {
     static const std::set<std::string> commands{"run", "generate", "diagnose", "ceiling", "score"};
     if (!commands.count(command)) throw UsageError("unknown command '" + command + "'");
@@ -605,12 +612,13 @@ int main(int argc, char** argv) {
       else if (arg == "--family") family = value;
       else if (arg == "--threads") threads = static_cast<int>(wholeNumberOption(arg, value, 1, 256));
       else if (arg == "--log-rate") log_rate = numberOption(arg, value, 1.0, 1e4, "Hz");
+      else if (arg == "--noise-seed") noise_seed = static_cast<unsigned>(wholeNumberOption(arg, value, 0, 1000000));
       else if (arg == "--coarse-fit-stride") coarse_fit_stride = static_cast<std::size_t>(wholeNumberOption(arg, value, 1, 1000));
       else throw UsageError("unknown argument '" + arg + "'");
     }
     if (dir.empty()) throw UsageError("--out/--dir DIR is required");
     familyCases(family);  // an unknown family is a bad argument, before any work
-    if (command == "generate" || command == "run") generate(dir, family, filter, log_rate);
+    if (command == "generate" || command == "run") generate(dir, family, filter, log_rate, noise_seed);
     if (command == "diagnose" || command == "run") diagnose(dir, filter, threads, coarse_fit_stride);
     if (command == "ceiling" || command == "run") ceiling(dir, filter, threads);
     if (command == "score" || command == "run") return score(dir);
