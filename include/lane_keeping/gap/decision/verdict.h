@@ -27,10 +27,6 @@ std::vector<RankedEffect> rankFits(const std::vector<CandidateFit>& fits, const 
 
 /// The candidates whose fit has a parameter pinned at a bound of its range.
 std::set<std::string> pinnedEffects(const std::vector<CandidateFit>& fits);
-/// The candidates whose fit has every parameter pinned at a bound of its range: the data place none of
-/// them, and such a fit never wins (a fit pinned on some of its parameters may, where nothing unpinned
-/// qualifies: the data may fix only a combination of them).
-std::set<std::string> pinnedEverywhere(const std::vector<CandidateFit>& fits);
 
 /// The pinned candidates whose held-out improvement (gap_before^2 - gap_after^2) is within the
 /// noise-only spread of the total excess (heldSpread): a fit stretched to a bound of its range that
@@ -44,8 +40,9 @@ struct VerdictContext {
   /// Pinned candidates whose held-out improvement (gap^2 before - after) lies inside the noise-only
   /// spread of the total excess (its 95 % quantile minus its median): they never win.
   std::set<std::string> pinned_within_noise;
-  /// Candidates with every parameter pinned (pinnedEverywhere), with their fitted parameters for the
-  /// reason: they never win either.
+  /// Candidates with every parameter pinned (CandidateFit::at_bound_everywhere), with their fitted parameters
+  /// for the reason: the data place none of them, and they never win either (a fit pinned on some of its
+  /// parameters may, where nothing unpinned qualifies: the data may fix only a combination of them).
   std::map<std::string, std::string> pinned_everywhere;
   const GapWhere* where = nullptr;       ///< the where-analysis (subsystem, nrmse and floor for the reason)
   double gap_before = 0.0;               ///< held-out gap of the nominal, net of the noise reference

@@ -33,11 +33,11 @@ struct WinnerSelection {
 
 /// `ranking` is sorted best first; `changes_where(effect)` says whether an effect (in its form) changes
 /// the subsystem carrying the gap; `pinned` names (RankedEffect::label) the candidates with a parameter
-/// pinned at a bound; those also in `pinned_within_noise` (their improvement lies inside the noise-only
-/// spread) never win.
+/// pinned at a bound; those also in `never_win` (pinned with an improvement inside the noise-only spread,
+/// or pinned on every parameter: verdict.h) never win.
 WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
                              const std::function<bool(const RankedEffect&)>& changes_where,
                              const std::set<std::string>& pinned, double min_shrink,
-                             double min_evidence_per_parameter, const std::set<std::string>& pinned_within_noise = {});
+                             double min_evidence_per_parameter, const std::set<std::string>& never_win = {});
 
 }  // namespace lane_keeping

@@ -79,14 +79,6 @@ std::set<std::string> pinnedEffects(const std::vector<CandidateFit>& fits) {
   return pinned;
 }
 
-std::set<std::string> pinnedEverywhere(const std::vector<CandidateFit>& fits) {
-  std::set<std::string> pinned;
-  for (const auto& fit : fits) {
-    if (fit.ok && fit.at_bound_everywhere) pinned.insert(fit.effect->label());
-  }
-  return pinned;
-}
-
 std::set<std::string> pinnedWithinNoise(const std::vector<RankedEffect>& ranking, const std::set<std::string>& pinned,
                                         const NoiseNull& null, double gap_before) {
   std::set<std::string> out;

@@ -7,7 +7,7 @@ namespace lane_keeping {
 WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
                              const std::function<bool(const RankedEffect&)>& changes_where,
                              const std::set<std::string>& pinned, double min_shrink,
-                             double min_evidence_per_parameter, const std::set<std::string>& pinned_within_noise) {
+                             double min_evidence_per_parameter, const std::set<std::string>& never_win) {
   auto qualifies = [&](const RankedEffect& r) {
     return r.shrink >= min_shrink && r.score >= min_evidence_per_parameter * static_cast<double>(r.params.size());
   };
@@ -19,7 +19,7 @@ WinnerSelection selectWinner(const std::vector<RankedEffect>& ranking,
     if (s.top == nullptr) s.top = &r;
     if (!qualifies(r)) continue;
     if (pinned.count(r.label()) != 0) {
-      if (best_pinned == nullptr && pinned_within_noise.count(r.label()) == 0) best_pinned = &r;
+      if (best_pinned == nullptr && never_win.count(r.label()) == 0) best_pinned = &r;
     } else {
       if (s.winner == nullptr) s.winner = &r;
       if (best_sensor == nullptr && isSensorEffect(r.effect)) best_sensor = &r;

@@ -51,7 +51,7 @@ TEST(PinnedAtBound, AFitTheDataPlaceOffItsBoundIsNotPinnedHoweverWideTheRange) {
   EXPECT_TRUE(diagnosis::pinnedAtBound(latency, {0.2975}, {1.0e-3}));
 }
 
-// Every parameter pinned, or some (verdict.h pinnedEverywhere: only a fit pinned on all never wins).
+// Every parameter pinned, or some (CandidateFit::at_bound_everywhere: only a fit pinned on all never wins, verdict.h).
 TEST(PinnedAtBound, ThePinnedParametersAreCountedEachOnItsOwnAxis) {
   const CandidateEffect& inertia = candidateEffect("inertia");
   ASSERT_EQ(inertia.params.size(), 3u);
