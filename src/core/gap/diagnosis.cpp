@@ -576,6 +576,7 @@ GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRu
     how_far_options.closed_loop = false;
     report.notes.push_back("how far: no closed-loop replay (the logs do not hold the tracker's inputs and output)");
   }
+  const std::size_t notes_before_how_far = report.notes.size();
   howFar(winner, nominal_held, heldout.empty() ? train_runs : held_runs, how_far_options, &report, artifacts);
   if (options.closed_loop) report.wall_seconds.emplace_back("how_far", secondsSince(how_far_start));
   // A verdict whose corrected closed loop drives farther from the held-out runs than the nominal's is
@@ -592,6 +593,7 @@ GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRu
     alone.verdict.combined_gap_after = alone.verdict.gap_after;
     alone.verdict.combined_shrink = alone.verdict.shrink;
     alone.how_far = ClosedLoopGap{};
+    alone.notes.resize(notes_before_how_far);  // how far's own notes were of the combination's closed loop
     say("closed-loop replays of the leader alone (the combination's closed loop is farther from the logs)");
     DiagnosisArtifacts alone_overlay;
     howFar(leader_alone, nominal_held, heldout.empty() ? train_runs : held_runs, how_far_options, &alone,
