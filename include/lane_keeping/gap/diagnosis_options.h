@@ -66,6 +66,11 @@ struct DiagnosisOptions {
   /// Hold every run (or side) out in turn even where the held-out test alone detects the gap: the folds
   /// decide as they do on the pooled test, and the report lists each (lk_gap --every-fold).
   bool every_fold = false;
+  /// Where the replays' test sees no gap on held-out data and names nothing, a steering-loop delay is
+  /// tested on its own fit against the same fit on the noise-only draws (decision/targeted_test.h; issue
+  /// 47, kind 3): a delay of a few milliseconds near the loop's margin moves the replays' total excess less
+  /// than noise does, yet its fit places it sharply and removes held-out excess no draw's fit removes.
+  bool targeted_delay_test = true;
   /// Correct the sensor errors the input checks measure before any model (log/heading_agreement.h: the gyro's
   /// scale where the course and ay / V outvote it, its drift from psi where ay / V does not contradict it) before
   /// the fits, and name them as the verdict's effects (decision/measured_sensor_errors.h). An engineer fixes a

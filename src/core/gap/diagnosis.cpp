@@ -15,6 +15,7 @@
 #include "lane_keeping/gap/decision/knock_on.h"
 #include "lane_keeping/gap/decision/measured_sensor_errors.h"
 #include "lane_keeping/gap/decision/modal_evidence.h"
+#include "lane_keeping/gap/decision/targeted_test.h"
 #include "lane_keeping/gap/decision/how_far.h"
 #include "lane_keeping/gap/decision/noise_null.h"
 #include "lane_keeping/gap/decision/partial_explanation.h"
@@ -460,12 +461,29 @@ GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRu
     report.wall_seconds.emplace_back("second fold", secondsSince(fold_start));
   }
 
+  // ---- A steering-loop delay on its own fit, where the replays' test sees nothing held out (targeted_test.h)
+  TargetedTest targeted;
+  const bool delay_asked = options.effects.empty() || std::find(options.effects.begin(), options.effects.end(),
+                                                                kTargetedCandidate) != options.effects.end();
+  if (options.targeted_delay_test && delay_asked && report.verdict.effect == "unexplained" &&
+      !decisive.heldout.detected && null.draws() >= min_draws && all.count("steering") > 0) {
+    say("the targeted test of a steering-loop delay");
+    const Clock::time_point targeted_start = Clock::now();
+    targeted = targetedTest(candidateEffect(kTargetedCandidate), fit_context, null, options);
+    if (targeted.ran) {
+      report.notes.push_back(targeted.summary);
+      report.wall_seconds.emplace_back("targeted test", secondsSince(targeted_start));
+      if (targeted.detected) report.verdict = targetedVerdict(targeted, nominal, gap_before);
+    }
+  }
+
   const CandidateFit* winner = nullptr;
   for (const auto& fit : fits) {
     if (fit.ok && fit.effect->name == report.verdict.effect && fit.effect->form == primaryForm(report.verdict.form)) {
       winner = &fit;
     }
   }
+  if (report.verdict.basis == "targeted") winner = &targeted.fit;
   // ---- Several effects at once: the others fitted on top of the leader (forward_selection.h) ---------
   CandidateFit combined, leader_form;
   const CandidateFit* leader_alone = nullptr;  // the leader where further effects were named on top of it
@@ -480,6 +498,9 @@ GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRu
     report.verdict.effects = {e};
     report.verdict.combined_gap_after = gap_before;
     report.verdict.combined_shrink = 0.0;
+  } else if (winner != nullptr && report.verdict.basis == "targeted") {
+    // Named on its own fit where the replays' test saw nothing: no further effect can earn its place on
+    // evidence that test does not see (the verdict holds the delay alone).
   } else if (winner != nullptr) {
     // The form that reproduces the effect (leader_forms.h): LuGre kingpin friction, a soft saturation.
     const Clock::time_point form_start = Clock::now();

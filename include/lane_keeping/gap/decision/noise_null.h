@@ -12,6 +12,7 @@
 /// What is tested: the total excess T = sum over subsystems of excess^2 (gap_metrics.h) of the nominal
 /// replays, on held-out and on training data separately. The largest draw's excess per subsystem is also
 /// each subsystem's noise reference (SubsystemScore::reference), so that the gap is net of it.
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
@@ -26,8 +27,20 @@
 namespace lane_keeping {
 namespace diagnosis {
 
+/// One draw's data: each run's noise-only reference (its nominal closed loop with noise drawn at the
+/// log's levels) on the data sets' segments.
+struct NoiseDraw {
+  bool ok = false;
+  std::vector<Dataset> train, held;
+  std::string note;  ///< why not ok
+};
+
 struct NoiseNull {
   std::vector<std::map<std::string, SubsystemScore>> train, held;  ///< per draw that ran
+  /// Draw k's data again, with the seed it had (0 <= k < the draws asked for): for a test that fits a
+  /// candidate on the draws themselves (targeted_test.h). Empty without draws. It holds the nominal
+  /// closed loops the draws were made from, so they are not simulated again.
+  std::function<NoiseDraw(int)> redraw;
   std::vector<std::map<std::string, ResidualStructure>> held_structure;  ///< per draw, per subsystem
   /// Why draws are missing (the nominal loop cannot cover a log); a log's steering-loop ringing that its
   /// nominal reference lacks (loop_ringing.h).

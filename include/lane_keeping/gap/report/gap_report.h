@@ -129,8 +129,10 @@ struct GapVerdict {
   double gap_after = 0.0;   ///< held-out gap with the fitted effect
   double shrink = 0.0;      ///< 1 - gap_after / gap_before
   std::string reason;       ///< one sentence: why this verdict
-  /// What named the effect: "replays" (its held-out shrink and evidence), or "modal" where the replays
-  /// cannot weigh it and the loop's characteristic roots do (modal_evidence.h: gap_after = gap_before).
+  /// What named the effect: "replays" (its held-out shrink and evidence), "modal" where the replays
+  /// cannot weigh it and the loop's characteristic roots do (modal_evidence.h: gap_after = gap_before),
+  /// "targeted" where the replays' test sees no gap and a delay's fit beats its fit on every noise-only draw
+  /// (targeted_test.h: the gaps gross of the noise reference), or "measured" (measured_sensor_errors.h).
   std::string basis = "replays";
   std::vector<std::string> confusable_with;  ///< effects the data cannot tell apart from the winner
   PartialExplanation partial;  ///< set when the best candidate explains only part of the gap

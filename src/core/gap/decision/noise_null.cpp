@@ -71,11 +71,10 @@ NominalReferences nominalReferences(const std::vector<Dataset>& train, const std
 
 /// One draw: each run's noise-only reference (its nominal reference with noise drawn from `seed` and the
 /// run's rank), on the data sets' segments.
-struct Draw {
-  bool ok = false;
-  std::vector<Dataset> train, held;
-  std::string note;
-};
+using Draw = NoiseDraw;
+
+/// The seed of draw k.
+unsigned drawSeed(std::size_t k) { return 9001u + 1000u * static_cast<unsigned>(k); }
 
 Draw referenceDraw(const std::vector<Dataset>& train, const std::vector<Dataset>& held,
                    const NominalReferences& nominal, unsigned seed) {
@@ -136,10 +135,11 @@ NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset
   };
   std::vector<Result> results(static_cast<std::size_t>(std::max(0, draws)));
   const bool input_driven = subsystems.size() == 1 && subsystems.count("chassis") == 1;
-  const NominalReferences nominal =
-      results.empty() ? NominalReferences{} : nominalReferences(train, held, threads, input_driven);
+  const auto references = std::make_shared<const NominalReferences>(
+      results.empty() ? NominalReferences{} : nominalReferences(train, held, threads, input_driven));
+  const NominalReferences& nominal = *references;
   parallelFor(results.size(), threads, [&](std::size_t k) {
-    const Draw draw = referenceDraw(train, held, nominal, 9001u + 1000u * static_cast<unsigned>(k));
+    const Draw draw = referenceDraw(train, held, nominal, drawSeed(k));
     Result& r = results[k];
     if (!draw.ok) {
       r.note = draw.note;
@@ -152,6 +152,11 @@ NoiseNull noiseNull(const std::vector<Dataset>& train, const std::vector<Dataset
     r.ok = true;
   });
   NoiseNull null;
+  if (!results.empty()) {
+    null.redraw = [references, train, held](int k) {
+      return referenceDraw(train, held, *references, drawSeed(static_cast<std::size_t>(k)));
+    };
+  }
   for (const Result& r : results) {
     if (!r.ok) {
       if (null.notes.empty()) null.notes.push_back(r.note);

@@ -21,7 +21,7 @@
 //                  "train_gap_before", "train_gap_after", "heldout_gap_before", "heldout_gap_after",
 //                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked", "implausible" (only where it is)}],
 //     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason",
-//                  "basis" ("replays", "modal": named on the loop's modes, modal_evidence.h, or "measured": a sensor error the input checks measured, decision/measured_sensor_errors.h), "confusable_with": [..],
+//                  "basis" ("replays", "modal": named on the loop's modes, modal_evidence.h, "targeted": a delay named on its own fit against the draws' same fit, targeted_test.h, or "measured": a sensor error the input checks measured, decision/measured_sensor_errors.h), "confusable_with": [..],
 //                  "effects": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {}, "share", "gap_after",
 //                               "evidence", "sensor", "measured" (only where true), "confusable_with": [..]}], "combined_gap_after", "combined_shrink",
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}

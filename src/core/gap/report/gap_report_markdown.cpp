@@ -112,6 +112,11 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
     out << "- named on: the steering loop's modes (its roots against the logged ringing), not on the replays: the "
            "held-out gap is left as it was\n";
   }
+  if (v.basis == "targeted") {
+    out << "- named on: a test aimed at a steering-loop delay (its fit against the same fit on the noise-only "
+           "draws), where the replays' own test sees no gap; the held-out gap is the delay's subsystems', gross of the "
+           "noise reference\n";
+  }
   if (v.basis == "measured") {
     out << "- named on: the input checks' measurement before any model (the gyro laid over psi and ay / V), "
            "corrected before the fits; the gap before is the logs' as they were\n";
