@@ -67,6 +67,9 @@ void usage(std::ostream& out) {
          "  --no-measured-corrections   report the gyro scale and drift the input checks measure against psi\n"
          "             and ay / V (with a note where the verdict does not hold them) but read the log as it is\n"
          "             (default: corrected before the fits and named among the verdict's effects)\n"
+         "  --no-targeted-test   where the replays' test sees no gap, do not test the actuation delay's fit\n"
+         "             against the same fit on the noise-only draws (default: named where it beats every draw on\n"
+         "             both sides; docs/gap.md, \"A delay tested on its own fit\")\n"
          "  --max-side-force G   the largest steady side force a candidate may fit and still be the cause,\n"
          "             as a fraction of the car's weight (default 0.1: a road's steepest bank or a storm's\n"
          "             crosswind; 0 lifts the bound; a banked oval needs more)\n"
@@ -146,6 +149,7 @@ Arguments parseArguments(int argc, char** argv) {
     else if (arg == "--one-fold") a.options.two_folds = false;
     else if (arg == "--every-fold") a.options.every_fold = true;
     else if (arg == "--no-measured-corrections") a.options.correct_measured_sensor_errors = false;
+    else if (arg == "--no-targeted-test") a.options.targeted_delay_test = false;
     else if (arg == "--max-side-force") a.options.max_side_force = numberOption(arg, value(), 0.0, 10.0, "g");
     else if (arg == "--candidate-forms-only") a.options.leader_forms = false;
     else if (arg == "--no-plots") a.plots = false;

@@ -140,6 +140,32 @@ def test_measured_corrections_is_lk_gaps(lk, tmp_path):
     assert not any(e.get("measured") for e in off["verdict"]["effects"])
 
 
+def test_targeted_test_is_lk_gaps(lk, tmp_path):
+    """targeted_test=False is lk_gap's --no-targeted-test: on a run with nothing wrong the replays' test sees no gap, so
+    by default the actuation delay's fit is tested against the draws (a note says so, and names nothing here); off,
+    it is not, the same from Python as from the tool."""
+    log, scenario = str(tmp_path / "clean.csv"), str(tmp_path / "clean.yaml")
+    with open(scenario, "w") as f:
+        json.dump({"simulation": {"duration": 8, "log_rate": 100}}, f)
+    run_tool("lk_simulate", "--config", NOMINAL, "--config", scenario, "--out", log, "--quiet")
+    run = [{"log": log, "scenario": scenario}]
+
+    def tested(report):
+        return any(n.startswith("targeted test of actuation_delay") for n in report["notes"])
+
+    on = lk.diagnose(NOMINAL, run, effects=["actuation_delay"], threads=1)
+    assert on["verdict"]["effect"] == "unexplained" and tested(on), on["notes"]
+    off = lk.diagnose(NOMINAL, run, effects=["actuation_delay"], threads=1, targeted_test=False)
+    assert not tested(off)
+    report_dir = str(tmp_path / "report")
+    code, _, stderr = run_tool("lk_gap", "--config", NOMINAL, "--log", log, "--scenario", scenario, "--effects",
+                               "actuation_delay", "--threads", "1", "--no-targeted-test", "--no-plots", "--quiet",
+                               "--report", report_dir, check=False)
+    assert code == 0, stderr
+    with open(os.path.join(report_dir, "report.json")) as f:
+        assert without_wall_times(off) == without_wall_times(json.load(f))
+
+
 def test_a_frames_bad_rows_are_named(lk, logs):
     _, runs = logs
     train = runs["train"][0]

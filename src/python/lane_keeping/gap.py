@@ -44,7 +44,7 @@ def _runs(items, name):
 
 def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threads=2, noise_reference_draws=19,
              coarse_fit_stride=3, two_folds=True, every_fold=False, leader_forms=True, measured_corrections=True,
-             max_side_force=0.1, progress=None, series=False):
+             targeted_test=True, max_side_force=0.1, progress=None, series=False):
     """The sim-to-real gap diagnosis, as `lk_gap --config NOMINAL --log ... [--holdout ...] --report DIR`.
 
     nominal:  the nominal configuration (as simulate() takes it; a `log:` section maps every log's columns)
@@ -63,6 +63,8 @@ def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threa
                   (False: lk_gap --candidate-forms-only)
     measured_corrections: correct the gyro's scale and drift that the input checks measure against psi and ay / V
                           before the fits, and name them (False: lk_gap --no-measured-corrections, reported only)
+    targeted_test: where the replays' test sees no gap, test the actuation delay's fit against the same fit on
+                   the noise-only draws (False: lk_gap --no-targeted-test)
     max_side_force: the largest steady side force [g of the car's weight] a candidate may fit and still be the
                     cause (lk_gap --max-side-force; 0 lifts the bound)
     progress: a callable given each progress message (lk_gap prints them on stderr)
@@ -74,7 +76,8 @@ def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threa
     options = {"threads": int(threads), "noise_reference_draws": int(noise_reference_draws),
                "coarse_fit_stride": int(coarse_fit_stride), "effects": list(effects or []),
                "two_folds": bool(two_folds), "every_fold": bool(every_fold), "leader_forms": bool(leader_forms),
-               "measured_corrections": bool(measured_corrections), "max_side_force": float(max_side_force)}
+               "measured_corrections": bool(measured_corrections), "targeted_test": bool(targeted_test),
+               "max_side_force": float(max_side_force)}
     text, artifacts = _lane_keeping.diagnose(config_layers(nominal, overrides), _runs(logs, "logs"),
                                              _runs(holdout, "holdout"), options, progress)
     report = json.loads(text)
