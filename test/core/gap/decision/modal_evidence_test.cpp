@@ -131,6 +131,24 @@ TEST(ModalEvidence, TheDelayWhoseFitCanRingTheLoopThereHasItAndNoOtherCandidate)
   EXPECT_LT(beyond[0].modal, 0.00173);
 }
 
+TEST(ModalEvidence, AFitBeyondTheMarginByMoreThanItsScanIsScannedBelowTheMargin) {
+  // A fresh noise draw of the +1.7 ms log fitted the delay at 1.863 +- 0.023 ms: its loop unstable, and so is every
+  // value within 3 standard errors (1.79-1.93 ms). A bounded log is a stable loop: the scan then covers the six
+  // standard errors below the margin, where 1.7 ms rings the loop at the logged 29.7 Hz.
+  const SimConfig nominal = marginNominal();
+  std::vector<CandidateFit> fits{fitOf(effectNamed("actuation_delay"), 0.0018634, 2.31e-5, 1.0)};
+  fits[0].unbounded_on.push_back({});
+  std::vector<std::string> notes;
+  const std::vector<ModalSupport> support = modalSupport(fits, nominal, {ringingAt(129.7)}, "steering", 0.3, 2, &notes);
+  ASSERT_EQ(support.size(), 1u) << (notes.empty() ? "" : notes.back());
+  EXPECT_EQ(support[0].effect, "actuation_delay");
+  EXPECT_LT(support[0].modal, 0.0018634 - 3.0 * 2.31e-5);  // below the +-3 sigma scan
+  EXPECT_NEAR(support[0].modal, 0.0017, 0.00004);
+  EXPECT_LE(support[0].mode.error, 100.0 / 64.0);
+  // Not where the log rings elsewhere: just below the margin the loop's fast mode lies near 130 Hz.
+  EXPECT_TRUE(modalSupport(fits, nominal, {ringingAt(100.0 + 12.0)}, "steering", 0.3, 2, &notes).empty());
+}
+
 TEST(ModalEvidence, TheVerdictNamesTheOneCandidateWithItAndNoneOfTwo) {
   GapWhere where;
   where.subsystem = "steering";
