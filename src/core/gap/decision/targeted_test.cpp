@@ -74,7 +74,8 @@ TargetedTest targetedTest(const CandidateEffect& effect, const FitContext& conte
   // nothing on one side, or is pinned, cannot be named whatever the draws do: they are not fitted (most logs
   // with nothing wrong: the delay stays at nil). Nor are the rest once one draw's fit removes as much as the
   // log's on either side: the log is then not beyond every draw (the test asks p <= 1 / (B + 1) on both).
-  const double shrink = out.gross_before > 0.0 ? 1.0 - out.gross_after / out.gross_before : 0.0;
+  const double tested_after = out.gross_after;  // the least-squares fit's, as tested (a bounded refit may follow)
+  const double shrink = out.gross_before > 0.0 ? 1.0 - tested_after / out.gross_before : 0.0;
   const bool testable = log.ok && out.held_drop > 0.0 && out.train_drop > 0.0 && !pinned && shrink >= kTargetedMinShrink;
   const int asked = std::max(0, options.noise_reference_draws);
   std::vector<Drops> draws(testable ? static_cast<std::size_t>(asked) : 0u);
@@ -158,7 +159,7 @@ TargetedTest targetedTest(const CandidateEffect& effect, const FitContext& conte
     << "training data";
   if (log.ok) {
     s << fitted.str() << ", it removes " << briefNumber(out.held_drop) << " of the held-out excess^2 (gross gap "
-      << briefNumber(out.gross_before) << " -> " << briefNumber(out.gross_after) << ") and " << briefNumber(out.train_drop)
+      << briefNumber(out.gross_before) << " -> " << briefNumber(tested_after) << ") and " << briefNumber(out.train_drop)
       << " of the training data's";
     if (pinned) {
       s << "; its fit is pinned at a bound of its range (the draws not fitted)";

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "gap_benchmark/benchmark_cases.h"
+#include "lane_keeping/common/brief_number.h"
 #include "lane_keeping/gap/decision/noise_null.h"
 #include "lane_keeping/gap/decision/targeted_test.h"
 #include "lane_keeping/gap/diagnosis.h"
@@ -79,6 +80,16 @@ TEST(TargetedTest, AFitBeyondTheMarginIsNamedAtItsFitUnderTheLoggedBounds) {
   const double named = r.verdict.effects.at(0).params.at("extra_delay");
   EXPECT_GT(named, 0.0008);
   EXPECT_LT(named, 0.00205);  // below the unconstrained 2.06 ms
+  // The note gives the least-squares fit's held-out gap and then the refit's, each its own (the refit's is the
+  // verdict's gap after).
+  const std::string refit = "fitted again under them: ";
+  const std::size_t at = note.find(refit);
+  ASSERT_NE(at, std::string::npos);
+  EXPECT_NE(note.find(" -> " + briefNumber(r.verdict.gap_after), at), std::string::npos) << note;
+  const std::size_t first = note.find("(gross gap ");
+  ASSERT_NE(first, std::string::npos);
+  EXPECT_EQ(note.find(" -> " + briefNumber(r.verdict.gap_after) + ")", first), std::string::npos)
+      << "the least-squares fit's gap is the refit's: " << note;
   // Its closed loop does not drive farther from the log than the nominal's.
   EXPECT_LE(r.how_far.net_after, r.how_far.net_before * 1.05);
 }
