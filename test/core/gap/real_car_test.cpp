@@ -130,6 +130,29 @@ TEST(RealCar, TheMinutesSensorErrorsAreNamedBeforePhysics) {
   EXPECT_GT(r.verdict.combined_shrink, 0.7);
 }
 
+TEST(RealCar, TheMinutesOwnDrawsAreNotDrawnWithoutItsSensorErrors) {
+  // The minute feeds the chassis replay alone, so its noise-only draws are the chassis driven by its own
+  // steering, started from and read as its sensors read: a model with the heading mount's 15.8 mrad cannot be
+  // drawn so (every draw would miss the offset and leave a gap: above 0.88 against the nominal's 0.24), and what
+  // the heading and the gyro leave is tested against the nominal's draws only. The steering scale (x 1.45, a yaw
+  // gain of 0.69: where the spectral and reverse-regression bounds, 0.70-0.88, put the car) is then named.
+  DiagnosisOptions options;
+  options.effects = {"sensor_offset", "sensor_scale", "cornering_stiffness"};
+  const GapReport r = diagnoseGap(realRun().config, {realRun()}, {}, options);
+  bool steering_scale = false;
+  for (const VerdictEffect& e : r.verdict.effects) {
+    if (e.effect == "sensor_scale" && e.form == "steering_angle") {
+      steering_scale = true;
+      EXPECT_NEAR(e.params.at("scale"), 1.45, 0.1);
+    }
+  }
+  for (const std::string& n : r.notes) {
+    EXPECT_EQ(n.find("draws of the model with"), std::string::npos) << n;
+  }
+  EXPECT_TRUE(steering_scale) << r.verdict.reason;
+  EXPECT_GT(r.verdict.combined_shrink, 0.95);
+}
+
 TEST(RealCar, TheRaceCarsSteeringOffsetIsFoundWhereTheStraightsPutIt) {
   // Measured outside the diagnosis (docs/real_logs/super_fj_fuji.md): on the straights, with the yaw rate
   // near 0, the steering wheel reads +3.6 +- 0.2 degrees, +5.2 +- 0.3 mrad at the road wheel (steer ratio
