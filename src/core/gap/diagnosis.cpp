@@ -498,10 +498,9 @@ GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRu
     report.verdict.effects = {e};
     report.verdict.combined_gap_after = gap_before;
     report.verdict.combined_shrink = 0.0;
-  } else if (winner != nullptr && report.verdict.basis == "targeted") {
-    // Named on its own fit where the replays' test saw nothing: no further effect can earn its place on
-    // evidence that test does not see (the verdict holds the delay alone).
-  } else if (winner != nullptr) {
+  } else if (winner != nullptr && report.verdict.basis != "targeted") {
+    // (A delay named on its own fit where the replays' test saw nothing is held alone: no further effect can
+    // earn its place on evidence that test does not see.)
     // The form that reproduces the effect (leader_forms.h): LuGre kingpin friction, a soft saturation.
     const Clock::time_point form_start = Clock::now();
     const std::size_t notes_before = report.notes.size();

@@ -51,8 +51,8 @@ struct TargetedTest {
   CandidateFit fit;  ///< on the log's training data (its held-out scores on the log's held-out data)
   /// Total excess^2 the fit removes from the nominal's (gross), on training and held-out data.
   double train_drop = 0.0, held_drop = 0.0;
-  std::vector<double> draws_train_drop, draws_held_drop;  ///< the same, per noise-only draw that ran
-  int draws_fitted = 0;       ///< the draws whose fit ran (none where the log's fit cannot be named)
+  /// The same, per noise-only draw fitted (none where the log's fit cannot be named).
+  std::vector<double> draws_train_drop, draws_held_drop;
   bool stopped_early = false;  ///< a draw's fit removed as much as the log's: the rest were not fitted
   double p_train = 1.0, p_held = 1.0;  ///< among all the draws asked for (a lower bound after an early stop)
   /// Held-out gap of the delay's subsystems, sqrt(T), before and after the fit (gross of the noise reference).

@@ -105,11 +105,11 @@ TargetedTest targetedTest(const CandidateEffect& effect, const FitContext& conte
     out.draws_train_drop.push_back(d.train);
     out.draws_held_drop.push_back(d.held);
   }
-  out.draws_fitted = static_cast<int>(out.draws_held_drop.size());
   out.stopped_early = beaten.load();
   // Ranked among all the draws asked for: those not fitted count as below the log, so a p-value after an early
   // stop is a lower bound (said so), and above the test's level either way.
-  const int complete = out.stopped_early ? asked : out.draws_fitted;
+  const int fitted_draws = static_cast<int>(out.draws_held_drop.size());
+  const int complete = out.stopped_early ? asked : fitted_draws;
   const bool enough = complete >= minimumNoiseDraws(options.false_alarm_rate);
   if (testable && enough) {
     auto pValue = [&](double value, const std::vector<double>& d) {
@@ -170,7 +170,7 @@ TargetedTest targetedTest(const CandidateEffect& effect, const FitContext& conte
       s << ": nothing for the draws to fall short of (they are not fitted)";
     } else {
       const std::string bound = out.stopped_early ? ">= " : "= ";
-      s << "; the same fit on " << out.draws_fitted << " noise-only draw(s)"
+      s << "; the same fit on " << out.draws_held_drop.size() << " noise-only draw(s)"
         << (out.stopped_early ? " (stopped at the first that removes as much; the rest not fitted)" : "")
         << " removes at most " << briefNumber(largest_held) << " held out (p " << bound << briefNumber(out.p_held)
         << ") and " << briefNumber(largest_train) << " in training (p " << bound << briefNumber(out.p_train) << ")";
