@@ -31,6 +31,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "lane_keeping/config/sim_config.h"
@@ -38,12 +39,23 @@
 namespace lane_keeping {
 
 struct EffectParameter {
+  EffectParameter() = default;
+  EffectParameter(std::string name_, std::string unit_, double initial_, double lower_, double upper_, bool log_scale_ = false,
+                  std::function<double(const SimConfig&)> nominal_ = {})
+      : name(std::move(name_)), unit(std::move(unit_)), initial(initial_), lower(lower_), upper(upper_), log_scale(log_scale_),
+        nominal(std::move(nominal_)) {}
+
   std::string name;
   std::string unit;
   double initial = 0.0;
   double lower = 0.0;
   double upper = 0.0;
   bool log_scale = false;
+  /// The value the nominal configuration holds for the parameter, where that may lie at or beyond a bound
+  /// of the range (a steering without viscous friction: 0, below the range's 0.01 N m s/rad). A fit left at
+  /// that bound keeps the part as the nominal has it, none of it, while the effect's other parameters place
+  /// it: not a fit stretching to imitate something else (pinnedParameterCount). Empty: not compared.
+  std::function<double(const SimConfig&)> nominal;
 };
 
 struct CandidateEffect {

@@ -124,9 +124,14 @@ std::vector<double> warmStartFit(const CandidateObjective& objective, std::vecto
 /// its bound was not, however wide the range: a 2.8 ms steering-angle latency +- 0.07 ms lies within 1 %
 /// of its 0-0.3 s range, and is 41 standard errors from a latency of nil.
 bool pinnedAtBound(const CandidateEffect& effect, const std::vector<double>& theta, const std::vector<double>& sigma);
-/// How many of the fit's parameters are pinned so (pinnedAtBound is this > 0).
+/// How many of the fit's parameters are pinned so (pinnedAtBound is this > 0). Given the `nominal`
+/// configuration, a parameter at the bound its nominal value lies at or beyond (EffectParameter::nominal)
+/// is not counted while another parameter of the fit lies off its bounds: the fit keeps that part as the
+/// nominal has it and places the effect by the others (the independent family's LuGre kingpin friction on top
+/// of a steering offset: Coulomb 3.01 N m for 3, the viscous part at the range's 0.01 for none). Where no
+/// parameter lies off its bounds it is counted: such a fit is the nominal's corner of the range, not an effect.
 std::size_t pinnedParameterCount(const CandidateEffect& effect, const std::vector<double>& theta,
-                                 const std::vector<double>& sigma);
+                                 const std::vector<double>& sigma, const SimConfig* nominal = nullptr);
 
 /// Parameters, bound flag, uncertainty and training / held-out scores of a fit at theta (`objective`
 /// over `context.train`, its replays the training scores). Its p + 2 replays run on `threads` threads (the

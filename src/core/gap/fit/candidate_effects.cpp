@@ -55,7 +55,8 @@ std::vector<CandidateEffect> buildCandidates() {
   list.push_back(make("steering_friction",
                   "Coulomb and viscous friction in the steering",
                   // Log-spaced: friction levels span decades and the loss has narrow minima (stick-slip).
-                  {{"coulomb", "N m", 1.0, 0.02, 200.0, true}, {"viscous", "N m s/rad", 0.1, 0.01, 100.0, true}},
+                  {{"coulomb", "N m", 1.0, 0.02, 200.0, true},
+                   {"viscous", "N m s/rad", 0.1, 0.01, 100.0, true, [](const SimConfig& c) { return c.steering.viscous_friction; }}},
                   {"steering"},
                   false,
                   [](const std::vector<double>& p, SimConfig& c) {

@@ -477,8 +477,9 @@ bool pinnedAtBound(const CandidateEffect& effect, const std::vector<double>& the
 }
 
 std::size_t pinnedParameterCount(const CandidateEffect& effect, const std::vector<double>& theta,
-                                 const std::vector<double>& sigma) {
+                                 const std::vector<double>& sigma, const SimConfig* nominal) {
   std::size_t pinned = 0;
+  std::size_t as_nominal = 0;  // at the bound the nominal's value lies at or beyond
   for (std::size_t i = 0; i < theta.size() && i < effect.params.size(); ++i) {
     const auto& p = effect.params[i];
     const double span = p.log_scale ? std::log(p.upper / p.lower) : (p.upper - p.lower);
@@ -488,9 +489,19 @@ std::size_t pinnedParameterCount(const CandidateEffect& effect, const std::vecto
     if (!(distance < 0.01 * span)) continue;
     // The standard error on the axis the distance is measured on (d log theta = d theta / theta).
     const double s = i < sigma.size() ? (p.log_scale ? sigma[i] / std::fabs(theta[i]) : sigma[i]) : kNaN;
-    if (!std::isfinite(s) || distance < 3.0 * s || distance < 0.001 * span) ++pinned;
+    const bool placed_off = std::isfinite(s) && distance >= 3.0 * s && distance >= 0.001 * span;
+    if (placed_off) continue;
+    if (nominal != nullptr && p.nominal) {
+      const double held = p.nominal(*nominal);
+      if (from_lower <= from_upper ? held <= p.lower : held >= p.upper) {
+        ++as_nominal;
+        continue;
+      }
+    }
+    ++pinned;
   }
-  return pinned;
+  const std::size_t off_bounds = std::min(theta.size(), effect.params.size()) - pinned - as_nominal;
+  return off_bounds > 0 ? pinned : pinned + as_nominal;
 }
 
 void scoreFit(const CandidateObjective& objective, const std::vector<double>& theta, const FitContext& context,
@@ -557,7 +568,7 @@ void scoreFit(const CandidateObjective& objective, const std::vector<double>& th
     }
   }
 
-  const std::size_t pinned = pinnedParameterCount(effect, theta, fit.sigma);
+  const std::size_t pinned = pinnedParameterCount(effect, theta, fit.sigma, context.nominal);
   fit.at_bound = pinned > 0;
   fit.at_bound_everywhere = pinned > 0 && pinned == theta.size();
   fit.implausible = implausibleMagnitude(effect, theta, fit.corrected, options.max_side_force);

@@ -23,7 +23,7 @@ std::vector<CandidateEffect> buildLeaderForms() {
   // a presliding deflection of T_c / sigma0, which must be small beside the wheel's motion for the wheel to
   // stick (a tanh-like spring otherwise). Not known from a nominal that has no LuGre friction: fitted.
   lugre.params = {{"coulomb", "N m", 1.0, 0.02, 200.0, true},
-                  {"viscous", "N m s/rad", 0.1, 0.01, 100.0, true},
+                  {"viscous", "N m s/rad", 0.1, 0.01, 100.0, true, [](const SimConfig& c) { return c.steering.viscous_friction; }},
                   {"stiffness", "N m/rad", 1e4, 1e2, 1e6, true}};
   lugre.subsystems = {"steering"};
   lugre.apply = [](const std::vector<double>& p, SimConfig& c) {

@@ -14,6 +14,7 @@
 #include "lane_keeping/gap/diagnosis.h"
 #include "lane_keeping/gap/fit/candidate_effects.h"
 #include "lane_keeping/gap/fit/candidate_fit.h"
+#include "lane_keeping/gap/fit/leader_forms.h"
 
 namespace lane_keeping {
 namespace {
@@ -70,6 +71,39 @@ TEST(PinnedAtBound, ThePinnedParametersAreCountedEachOnItsOwnAxis) {
   EXPECT_EQ(diagnosis::pinnedParameterCount(inertia, mixed, nan), 1u);
   EXPECT_TRUE(diagnosis::pinnedAtBound(inertia, mixed, nan));
   EXPECT_FALSE(diagnosis::pinnedAtBound(inertia, middle, nan));
+}
+
+// A parameter at the bound its nominal value lies beyond keeps that part as the nominal has it (none): not a
+// stretch while the fit's other parameters place the effect (pinnedParameterCount with the nominal). Kingpin
+// friction with its viscous part at the range's 0.01 N m s/rad on a steering with none: the Coulomb level
+// decides. With the nominal's viscous friction inside the range, or the level at a bound too, it counts.
+TEST(PinnedAtBound, APartLeftAsTheNominalHasItIsNotPinnedWhereTheOthersPlaceTheEffect) {
+  for (const CandidateEffect* friction : {&candidateEffect("steering_friction"), &diagnosis::leaderForms().front()}) {
+    SCOPED_TRACE(friction->label());
+    ASSERT_EQ(friction->params.at(1).name, "viscous");
+    const double floor = friction->params.at(1).lower;
+    const std::vector<double> sigma(friction->params.size(), std::numeric_limits<double>::quiet_NaN());
+    std::vector<double> theta;
+    for (const auto& p : friction->params) theta.push_back(p.initial);
+    theta[0] = 3.0;
+    theta[1] = floor;
+    SimConfig none;
+    none.steering.viscous_friction = 0.0;
+    SimConfig some = none;
+    some.steering.viscous_friction = 0.5;
+    EXPECT_EQ(diagnosis::pinnedParameterCount(*friction, theta, sigma), 1u);  // no nominal given: as before
+    EXPECT_EQ(diagnosis::pinnedParameterCount(*friction, theta, sigma, &none), 0u);
+    EXPECT_EQ(diagnosis::pinnedParameterCount(*friction, theta, sigma, &some), 1u);  // driven from 0.5 to the bound
+    // The level at its floor as well: every parameter at a bound, the nominal's corner of the range.
+    std::vector<double> corner = theta;
+    corner[0] = friction->params.at(0).lower;
+    if (corner.size() > 2) corner[2] = friction->params.at(2).lower;
+    EXPECT_EQ(diagnosis::pinnedParameterCount(*friction, corner, sigma, &none), corner.size());
+    // The level at its ceiling, the viscous part as the nominal's: the level counts, and so does the viscous part.
+    std::vector<double> stretched = corner;
+    stretched[0] = friction->params.at(0).upper;
+    EXPECT_EQ(diagnosis::pinnedParameterCount(*friction, stretched, sigma, &none), corner.size());
+  }
 }
 
 // The independent family's 2.5 ms steering-angle latency on a quantised bus: its latency fit (2.8 ms, 100 % of the
