@@ -52,6 +52,15 @@ GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& train
 std::vector<double> heldoutGaps(const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
                                 const std::vector<ConfigChange>& alternatives, const DiagnosisOptions& options = {});
 
+/// How far `change` takes the closed loop, measured as diagnoseGap measures its verdict's (how_far.h): the
+/// closed-loop replays of the held-out runs (of the training runs where none is held out) with each run's
+/// configuration (before) and with `change` (after), gross and net of the logs' noise. The gap benchmark's
+/// ceiling in closed loop: where the truth model itself closes little, what noise leaves in the replay beyond
+/// the floor of its white levels (a replay started from the log's noisy first samples; a run whose motion is
+/// small beside its noise) is what the net does not hold, not a verdict's miss.
+ClosedLoopGap closedLoopHowFar(const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
+                               const ConfigChange& change, const DiagnosisOptions& options = {});
+
 /// Every log under the shared configuration `nominal`.
 std::vector<GapRun> sharedConfigurationRuns(const SimConfig& nominal, const std::vector<GapLog>& logs);
 

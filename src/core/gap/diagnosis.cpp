@@ -63,6 +63,19 @@ std::vector<double> heldoutGaps(const std::vector<GapRun>& training, const std::
   return gaps;
 }
 
+ClosedLoopGap closedLoopHowFar(const std::vector<GapRun>& training, const std::vector<GapRun>& heldout,
+                               const ConfigChange& change, const DiagnosisOptions& options) {
+  if (training.empty()) throw InputError("gap diagnosis: no training log given");
+  const std::vector<RunData> runs = prepareRuns(heldout.empty() ? training : heldout);
+  CandidateFit as_if_named;  // howFar reads a winner's change (and its held-out scores, for the subsystems)
+  as_if_named.change = change;
+  DiagnosisOptions closed = options;
+  closed.closed_loop = true;
+  GapReport report;
+  howFar(&as_if_named, Evaluation{}, runs, closed, &report, nullptr);
+  return report.how_far;
+}
+
 GapReport diagnoseGap(const SimConfig& nominal, const std::vector<GapLog>& training, const std::vector<GapLog>& heldout,
                       const DiagnosisOptions& options, DiagnosisArtifacts* artifacts) {
   return diagnoseGap(nominal, sharedConfigurationRuns(nominal, training), sharedConfigurationRuns(nominal, heldout),

@@ -14,7 +14,8 @@
 // cases.json, the logs and the nominal configurations, and writes DIR/reports/<case>/report.json.
 // `ceiling` (after the diagnosis, with the truth) scores each log's truth configuration as the
 // diagnosis scores a candidate and writes DIR/reports/<case>/ceiling.json: the shrink a perfect
-// candidate would reach, which replay limits and noise keep below 100 %. `score` compares the verdicts
+// candidate would reach, which replay limits and noise keep below 100 %, and its closed-loop how far (net of
+// the logs' noise, as a verdict's is measured). `score` compares the verdicts
 // with truth.json and prints the confusion matrix, top-1 accuracy, median held-out shrink when right
 // (and the truth model's, where `ceiling` ran), false alarms on no-effect logs and the out-of-list
 // verdicts; then, for the independent family's groups (independent_groups.h), one table per group:
@@ -55,7 +56,12 @@ using nlohmann::json;
 
 namespace {
 
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+
 void makeDir(const std::string& path) { ::mkdir(path.c_str(), 0755); }
+
+/// JSON has no NaN: a figure that was not measured is null.
+json finiteOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json readJson(const std::string& path) {
   std::ifstream in(path);
@@ -244,21 +250,39 @@ void ceiling(const std::string& dir, const std::string& filter, int threads) {
     const auto [training, heldout] = caseRuns(dir, case_entries.at(c.id));
     DiagnosisOptions options;
     options.threads = threads;
-    const std::vector<double> gaps = heldoutGaps(training, heldout, {assignmentsChange(c.truth_overlay)}, options);
+    const ConfigChange truth_change = assignmentsChange(c.truth_overlay);
+    const std::vector<double> gaps = heldoutGaps(training, heldout, {truth_change}, options);
     const double shrink = gaps[0] > 0.0 ? 1.0 - gaps[1] / gaps[0] : 0.0;
+    // And in closed loop, as how_far measures a verdict: what a perfect verdict's simulation would close.
+    const ClosedLoopGap closed = closedLoopHowFar(training, heldout, truth_change, options);
+    const double net = closed.net_before > 0.0 ? 1.0 - closed.net_after / closed.net_before : kNaN;
     makeDir(dir + "/reports/" + c.id);
     writeJson(dir + "/reports/" + c.id + "/ceiling.json",
-              {{"gap_before", gaps[0]}, {"truth_gap_after", gaps[1]}, {"truth_shrink", shrink}});
-    std::fprintf(stderr, "[ceiling]  %-44s truth model shrink %6.1f %%  %.1f s\n", c.id.c_str(), 100.0 * shrink,
-                 std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+              {{"gap_before", gaps[0]}, {"truth_gap_after", gaps[1]}, {"truth_shrink", shrink},
+               {"how_far", {{"before", finiteOrNull(closed.before)}, {"after", finiteOrNull(closed.after)},
+                            {"noise_floor", finiteOrNull(closed.noise_floor)}, {"net_before", finiteOrNull(closed.net_before)},
+                            {"net_after", finiteOrNull(closed.net_after)}}},
+               {"truth_net_how_far", finiteOrNull(net)}});
+    std::fprintf(stderr, "[ceiling]  %-44s truth model shrink %6.1f %%, how far %6.1f %% net  %.1f s\n", c.id.c_str(),
+                 100.0 * shrink, 100.0 * net, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
 }
 
 /// The truth model's shrink on a log (ceiling.json), or NaN if `ceiling` has not run.
 double truthShrink(const std::string& dir, const std::string& id) {
   std::ifstream in(dir + "/reports/" + id + "/ceiling.json");
-  if (!in) return std::numeric_limits<double>::quiet_NaN();
+  if (!in) return kNaN;
   return json::parse(in)["truth_shrink"].get<double>();
+}
+
+/// The truth model's closed-loop shrink net of the logs' noise (ceiling.json), or NaN where `ceiling` has not
+/// run, ran before it measured the closed loop, or the closed loop gave no net gap.
+double truthNetHowFar(const std::string& dir, const std::string& id) {
+  std::ifstream in(dir + "/reports/" + id + "/ceiling.json");
+  if (!in) return kNaN;
+  const json ceiling = json::parse(in);
+  const auto it = ceiling.find("truth_net_how_far");
+  return it == ceiling.end() || !it->is_number() ? kNaN : it->get<double>();
 }
 
 /// Whether a verdict's form names the truth's: equal to it, or among the forms the logs cannot tell apart
@@ -285,6 +309,7 @@ std::string label(const std::string& effect, const std::string& form) {
 struct ScoredCase {
   BenchmarkCase c;
   GapReport r;
+  double truth_net_how_far = kNaN;  ///< the truth model's own (truthNetHowFar), where `ceiling` ran
 
   /// The verdict names the (one) truth, in its form where the truth has one.
   bool right() const {
@@ -358,7 +383,7 @@ void printConfusion(const std::map<std::string, std::map<std::string, int>>& con
 void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& scored) {
   std::map<std::string, std::map<std::string, int>> confusion;
   int in_list = 0, correct = 0, none = 0, false_alarms = 0, outside = 0, outside_unexplained = 0;
-  std::vector<double> shrinks, ceilings, how_far, net_how_far;
+  std::vector<double> shrinks, ceilings, how_far, net_how_far, truth_how_far;
   std::vector<std::string> out_of_list, per_log;
   std::vector<std::string> misses;
   for (const ScoredCase& s : scored) {
@@ -380,6 +405,7 @@ void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& sco
         if (std::isfinite(s.howFarShrink())) how_far.push_back(s.howFarShrink());
         if (std::isfinite(s.netHowFarShrink())) net_how_far.push_back(s.netHowFarShrink());
         if (std::isfinite(ceiling)) ceilings.push_back(ceiling);
+        if (std::isfinite(s.truth_net_how_far)) truth_how_far.push_back(s.truth_net_how_far);
       } else {
         misses.push_back(id + " -> " + verdict);
       }
@@ -410,6 +436,10 @@ void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& sco
   if (!how_far.empty()) {
     std::printf("median closed-loop shrink when right: %.1f %%, net of the logs' noise %s\n", 100.0 * median(how_far),
                 net_how_far.empty() ? "-" : percent(median(net_how_far)).c_str());
+    if (!truth_how_far.empty()) {
+      std::printf("  the truth model's own, same logs:    %s net   (the ceiling in closed loop: the replay's noise)\n",
+                  percent(median(truth_how_far)).c_str());
+    }
   }
   std::printf("no-effect logs judged unexplained:     %d / %d = %.1f %%   (target >= 90 %%)\n", none - false_alarms, none,
               none ? 100.0 * (none - false_alarms) / none : 0.0);
@@ -429,7 +459,7 @@ void printFamilyTable(const std::string& dir, const std::vector<ScoredCase>& sco
 void printGroupTable(const std::string& group, const std::vector<ScoredCase>& scored) {
   int single = 0, single_right = 0, several = 0, one_of = 0, both = 0, none = 0, none_unexplained = 0, outside = 0,
       outside_unexplained = 0;
-  std::vector<double> shrinks, how_far, net_how_far;
+  std::vector<double> shrinks, how_far, net_how_far, truth_how_far;
   std::vector<std::string> lines;
   for (const ScoredCase& s : scored) {
     const bool right = s.right();
@@ -458,6 +488,7 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
         shrinks.push_back(s.shrink());
         if (std::isfinite(s.howFarShrink())) how_far.push_back(s.howFarShrink());
         if (std::isfinite(s.netHowFarShrink())) net_how_far.push_back(s.netHowFarShrink());
+        if (std::isfinite(s.truth_net_how_far)) truth_how_far.push_back(s.truth_net_how_far);
       }
     }
     std::string named;
@@ -467,10 +498,13 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
       named_text += "  [two folds: " + label(s.r.folds[0].effect, s.r.folds[0].form) + " / " +
                     label(s.r.folds[1].effect, s.r.folds[1].form) + "]";
     }
-    char line[768];
-    std::snprintf(line, sizeof(line), "  %-56s %-44s -> %-34s %-12s shrink %s, how far %s (net %s)%s", s.c.id.c_str(),
+    const std::string truth_text =
+        std::isfinite(s.truth_net_how_far) ? "; the truth model's " + percent(s.truth_net_how_far) : std::string();
+    char line[800];
+    std::snprintf(line, sizeof(line), "  %-56s %-44s -> %-34s %-12s shrink %s, how far %s (net %s%s)%s", s.c.id.c_str(),
                   s.truthLabel().c_str(), s.verdictLabel().c_str(), mark.c_str(), percent(s.shrink()).c_str(),
-                  percent(s.howFarShrink()).c_str(), percent(s.netHowFarShrink()).c_str(), named_text.c_str());
+                  percent(s.howFarShrink()).c_str(), percent(s.netHowFarShrink()).c_str(), truth_text.c_str(),
+                  named_text.c_str());
     lines.push_back(line);
   }
   std::printf("\n=== %s (%zu logs) ===\n\n| | measured |\n|---|---|\n", group.c_str(), scored.size());
@@ -485,6 +519,9 @@ void printGroupTable(const std::string& group, const std::vector<ScoredCase>& sc
     std::printf("| median held-out shrink when right | %s |\n", shrinks.empty() ? "-" : percent(median(shrinks)).c_str());
     std::printf("| median closed-loop (how far) shrink when right | %s |\n", how_far.empty() ? "-" : percent(median(how_far)).c_str());
     std::printf("| the same net of the logs' noise | %s |\n", net_how_far.empty() ? "-" : percent(median(net_how_far)).c_str());
+    if (!truth_how_far.empty()) {
+      std::printf("| the truth model's own on the same logs (`ceiling`, net) | %s |\n", percent(median(truth_how_far)).c_str());
+    }
   }
   std::printf("\n");
   for (const auto& line : lines) std::printf("%s\n", line.c_str());
@@ -542,6 +579,7 @@ int score(const std::string& dir) {
     std::ifstream probe(path);
     if (!probe) continue;
     ScoredCase s{caseFromTruth(t), readGapReportJson(path)};
+    s.truth_net_how_far = truthNetHowFar(dir, id);
     if (s.c.group.empty()) {
       family.push_back(std::move(s));
     } else {
