@@ -181,3 +181,30 @@ def test_a_frames_bad_rows_are_named(lk, logs):
     with pytest.raises(lk.ConfigError, match="tracker.k_y"):
         lk.diagnose(NOMINAL, [{"log": train, "scenario": {"tracker": {"k_y": 0.1}}}], **OPTIONS)
     assert "steering_friction" in lk.candidate_effects()
+
+
+def test_how_far_measures_a_change_as_the_diagnosis_measures_its_verdict(lk, logs):
+    """how_far(): the closed loop with a change of one's own against the logs, on the diagnosis' own terms: the
+    same nominal closed loop before (report["how_far"]), the change's after; the logs' own friction closes the
+    gap, half of it part of it; a bad key is named before any replay."""
+    _, runs = logs
+    (train, train_scenario), (held, held_scenario) = runs["train"], runs["held"]
+    training = [{"log": train, "scenario": train_scenario}]
+    holdout = [{"log": held, "scenario": held_scenario}]
+    truth = lk.how_far(NOMINAL, training, holdout, change={"steering.coulomb_friction": 5}, threads=1)
+    half = lk.how_far(NOMINAL, training, holdout, change=["steering.coulomb_friction=2.5"], threads=1)
+    report = lk.diagnose(NOMINAL, training, holdout, **OPTIONS)
+    print(f"[ measured ] closed-loop gap {truth['before']:.4g} -> {truth['after']:.4g} with the logs' friction, "
+          f"-> {half['after']:.4g} with half of it")
+    assert truth["not_run"] == ""
+    assert truth["before"] == report["how_far"]["before"]
+    assert truth["net_before"] == report["how_far"]["net_before"]
+    assert truth["after"] < 0.05 * truth["before"]  # the logs were simulated with it, without noise
+    assert truth["after"] < half["after"] < half["before"]
+    assert truth["net_shrink"] > 0.95
+    with pytest.raises(lk.ConfigError, match="coulomb_frictio"):
+        lk.how_far(NOMINAL, training, change={"steering.coulomb_frictio": 1.0})
+    with pytest.raises(lk.ConfigError, match="no key=value"):
+        lk.how_far(NOMINAL, training, change=[])
+    with pytest.raises(TypeError, match="dotted keys"):
+        lk.how_far(NOMINAL, training, change={"steering": {"coulomb_friction": 5}})

@@ -2,6 +2,8 @@
 // from a pandas DataFrame: gapLogFromTable applies readCsvLog's rules), its scenario and log mapping are
 // read as lk_gap reads them; diagnoseGap runs without the GIL; the report is gapReportJson's text, the
 // very report.json lk_gap writes.
+#include <cmath>
+
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -10,6 +12,7 @@
 #include "config_input.h"
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/gap/diagnosis.h"
+#include "lane_keeping/gap/evaluation/config_change.h"
 #include "lane_keeping/gap/log/gap_log.h"
 #include "lane_keeping/gap/log/gap_run.h"
 #include "lane_keeping/gap/log/log_reader.h"
@@ -74,6 +77,50 @@ py::dict artifactsDict(const DiagnosisArtifacts& a) {
   return d;
 }
 
+/// The nominal configuration and the runs, read as lk_gap reads --config/--set, --log and --holdout.
+struct GapInputs {
+  SimConfig nominal;
+  std::vector<GapRun> training, heldout;
+};
+
+GapInputs gapInputs(py::handle nominal_layers, py::sequence training_runs, py::sequence heldout_runs) {
+  FlatParams nominal_params = flatParamsOf(nominal_layers);
+  const LogMapping shared_mapping = logMappingOf(nominal_layers);
+  nominal_params.erasePrefix("log.");
+  GapInputs in;
+  in.nominal = simConfigFromFlat(nominal_params);
+  for (const auto& run : training_runs) in.training.push_back(runOf(run, nominal_params, shared_mapping));
+  for (const auto& run : heldout_runs) in.heldout.push_back(runOf(run, nominal_params, shared_mapping));
+  return in;
+}
+
+/// How far `change` ("key=value" texts) takes the closed loop toward the logs, as diagnose measures a verdict's
+/// (closedLoopHowFar): report.json's how_far fields for that change.
+py::dict howFar(py::handle nominal_layers, py::sequence training_runs, py::sequence heldout_runs,
+                const std::vector<std::string>& change, int threads) {
+  if (threads < 1 || threads > 256) throw ConfigError("threads must be between 1 and 256");
+  if (change.empty()) throw ConfigError("change: no key=value given (the change whose closed loop is measured)");
+  const GapInputs in = gapInputs(nominal_layers, training_runs, heldout_runs);
+  const ConfigChange with = assignmentsChange(change);
+  (void)changed(in.nominal, with);  // a bad key or value: the reader's error naming it, before any replay
+  DiagnosisOptions options;
+  options.threads = threads;
+  ClosedLoopGap gap;
+  {
+    py::gil_scoped_release release;
+    gap = closedLoopHowFar(in.training, in.heldout, with, options);
+  }
+  py::dict d;
+  d["before"] = gap.before;
+  d["after"] = gap.after;
+  d["noise_floor"] = gap.noise_floor;
+  d["net_before"] = gap.net_before;
+  d["net_after"] = gap.net_after;
+  d["net_shrink"] = gap.net_before > 0.0 ? 1.0 - gap.net_after / gap.net_before : std::nan("");
+  d["not_run"] = gap.not_run;
+  return d;
+}
+
 py::tuple diagnose(py::handle nominal_layers, py::sequence training_runs, py::sequence heldout_runs, py::dict options_in,
                    py::object progress) {
   DiagnosisOptions options;
@@ -98,13 +145,7 @@ py::tuple diagnose(py::handle nominal_layers, py::sequence training_runs, py::se
     throw ConfigError("noise_reference_draws must be between 0 and 100");
   }
   if (options.coarse_fit_stride < 1) throw ConfigError("coarse_fit_stride must be at least 1");
-  FlatParams nominal_params = flatParamsOf(nominal_layers);
-  const LogMapping shared_mapping = logMappingOf(nominal_layers);
-  nominal_params.erasePrefix("log.");
-  const SimConfig nominal = simConfigFromFlat(nominal_params);
-  std::vector<GapRun> training, heldout;
-  for (const auto& run : training_runs) training.push_back(runOf(run, nominal_params, shared_mapping));
-  for (const auto& run : heldout_runs) heldout.push_back(runOf(run, nominal_params, shared_mapping));
+  const GapInputs in = gapInputs(nominal_layers, training_runs, heldout_runs);
   for (const auto& effect : options.effects) {
     bool known = false;
     for (const auto& name : candidateEffectNames()) known = known || name == effect;
@@ -121,7 +162,7 @@ py::tuple diagnose(py::handle nominal_layers, py::sequence training_runs, py::se
   std::string report_json;
   {
     py::gil_scoped_release release;
-    const GapReport report = diagnoseGap(nominal, training, heldout, options, &artifacts);
+    const GapReport report = diagnoseGap(in.nominal, in.training, in.heldout, options, &artifacts);
     report_json = gapReportJson(report);
   }
   return py::make_tuple(report_json, artifactsDict(artifacts));
@@ -133,6 +174,8 @@ void bindGap(py::module_& m) {
   m.def("diagnose", &diagnose, py::arg("nominal_layers"), py::arg("training"), py::arg("heldout"), py::arg("options"),
         py::arg("progress") = py::none(), "lk_gap in-process: (report.json text, the plots' series).");
   m.def("candidate_effects", [] { return candidateEffectNames(); }, "The candidate effects' names, as report.json names them.");
+  m.def("how_far", &howFar, py::arg("nominal_layers"), py::arg("training"), py::arg("heldout"), py::arg("change"),
+        py::arg("threads"), "The closed loop with a change against the logs, as diagnose measures a verdict's how far.");
 }
 
 }  // namespace python

@@ -29,6 +29,7 @@ _API = {
     "LOG_COLUMNS": "simulation",
     "diagnose": "gap",
     "candidate_effects": "gap",
+    "how_far": "gap",
     "critical_delay": "stability",
     "rightmost_roots": "stability",
     "stability_boundary": "stability",

@@ -1,4 +1,4 @@
-"""diagnose: lk_gap in-process (docs/python_api.md)."""
+"""diagnose: lk_gap in-process; how_far: the closed loop with a change of one's own (docs/python_api.md)."""
 
 import json
 import os
@@ -40,6 +40,41 @@ def _runs(items, name):
     if isinstance(items, (str, os.PathLike, Mapping)) or hasattr(items, "to_numpy"):
         items = [items]
     return [_run(item, f"{name}[{i}]") for i, item in enumerate(items)]
+
+
+def _assignments(change):
+    """A change as "key=value" texts: a dict of dotted keys and values, or "key=value" texts."""
+    if isinstance(change, Mapping):
+        out = []
+        for key, value in change.items():
+            if isinstance(value, Mapping):
+                raise TypeError(f"change: {key}: give dotted keys ({key}.name: value), not a nested dict")
+            text = ("true" if value else "false") if isinstance(value, bool) else str(value)
+            out.append(f"{key}={text}")
+        return out
+    if isinstance(change, str):
+        return [change]
+    out = list(change)
+    for assignment in out:
+        if not isinstance(assignment, str):
+            raise TypeError(f"change: expected a dict or 'key=value' texts, found {assignment!r}")
+    return out
+
+
+def how_far(nominal, logs, holdout=None, *, change, overrides=None, threads=2):
+    """How far a change of the configuration takes the closed loop toward the logs — the third question, asked of
+    a change of one's own (a fitted effect, a value from a test bench) — measured as diagnose() measures its
+    verdict's (report["how_far"]): the closed-loop replays of the held-out runs (of the training runs where
+    none is held out) with each run's configuration and with `change`, gross and net of the logs' noise.
+
+    nominal, logs, holdout, overrides: as diagnose() takes them
+    change:  {"tire.front.lateral_stiffness": 1.8e6, ...} or ["key=value", ...] (as lk_gap --set takes them)
+
+    Returns {"before", "after", "noise_floor", "net_before", "net_after", "net_shrink", "not_run"} (NaN where
+    not run; "not_run" says why). Raises ConfigError naming a bad key or value, InputError for a bad log.
+    """
+    return dict(_lane_keeping.how_far(config_layers(nominal, overrides), _runs(logs, "logs"), _runs(holdout, "holdout"),
+                                      _assignments(change), int(threads)))
 
 
 def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threads=2, noise_reference_draws=19,
