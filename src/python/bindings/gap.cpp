@@ -2,8 +2,6 @@
 // from a pandas DataFrame: gapLogFromTable applies readCsvLog's rules), its scenario and log mapping are
 // read as lk_gap reads them; diagnoseGap runs without the GIL; the report is gapReportJson's text, the
 // very report.json lk_gap writes.
-#include <cmath>
-
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -95,9 +93,9 @@ GapInputs gapInputs(py::handle nominal_layers, py::sequence training_runs, py::s
 }
 
 /// How far `change` ("key=value" texts) takes the closed loop toward the logs, as diagnose measures a verdict's
-/// (closedLoopHowFar): report.json's how_far fields for that change.
-py::dict howFar(py::handle nominal_layers, py::sequence training_runs, py::sequence heldout_runs,
-                const std::vector<std::string>& change, int threads) {
+/// (closedLoopHowFar): report.json's how_far object for that change, as its text.
+std::string howFar(py::handle nominal_layers, py::sequence training_runs, py::sequence heldout_runs,
+                   const std::vector<std::string>& change, int threads) {
   if (threads < 1 || threads > 256) throw ConfigError("threads must be between 1 and 256");
   if (change.empty()) throw ConfigError("change: no key=value given (the change whose closed loop is measured)");
   const GapInputs in = gapInputs(nominal_layers, training_runs, heldout_runs);
@@ -105,20 +103,8 @@ py::dict howFar(py::handle nominal_layers, py::sequence training_runs, py::seque
   (void)changed(in.nominal, with);  // a bad key or value: the reader's error naming it, before any replay
   DiagnosisOptions options;
   options.threads = threads;
-  ClosedLoopGap gap;
-  {
-    py::gil_scoped_release release;
-    gap = closedLoopHowFar(in.training, in.heldout, with, options);
-  }
-  py::dict d;
-  d["before"] = gap.before;
-  d["after"] = gap.after;
-  d["noise_floor"] = gap.noise_floor;
-  d["net_before"] = gap.net_before;
-  d["net_after"] = gap.net_after;
-  d["net_shrink"] = gap.net_before > 0.0 ? 1.0 - gap.net_after / gap.net_before : std::nan("");
-  d["not_run"] = gap.not_run;
-  return d;
+  py::gil_scoped_release release;
+  return closedLoopGapJson(closedLoopHowFar(in.training, in.heldout, with, options));
 }
 
 py::tuple diagnose(py::handle nominal_layers, py::sequence training_runs, py::sequence heldout_runs, py::dict options_in,
@@ -175,7 +161,7 @@ void bindGap(py::module_& m) {
         py::arg("progress") = py::none(), "lk_gap in-process: (report.json text, the plots' series).");
   m.def("candidate_effects", [] { return candidateEffectNames(); }, "The candidate effects' names, as report.json names them.");
   m.def("how_far", &howFar, py::arg("nominal_layers"), py::arg("training"), py::arg("heldout"), py::arg("change"),
-        py::arg("threads"), "The closed loop with a change against the logs, as diagnose measures a verdict's how far.");
+        py::arg("threads"), "The closed loop with a change against the logs, as diagnose measures a verdict's how far (how_far's JSON).");
 }
 
 }  // namespace python

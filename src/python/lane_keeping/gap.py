@@ -70,11 +70,12 @@ def how_far(nominal, logs, holdout=None, *, change, overrides=None, threads=2):
     nominal, logs, holdout, overrides: as diagnose() takes them
     change:  {"tire.front.lateral_stiffness": 1.8e6, ...} or ["key=value", ...] (as lk_gap --set takes them)
 
-    Returns {"before", "after", "noise_floor", "net_before", "net_after", "net_shrink", "not_run"} (NaN where
-    not run; "not_run" says why). Raises ConfigError naming a bad key or value, InputError for a bad log.
+    Returns report.json's how_far object for the change as a dict ("before", "after", "shrink", "noise_floor",
+    "net_before", "net_after", "net_shrink"; None where not run, and "not_run" saying why). Raises ConfigError
+    naming a bad key or value, InputError for a bad log.
     """
-    return dict(_lane_keeping.how_far(config_layers(nominal, overrides), _runs(logs, "logs"), _runs(holdout, "holdout"),
-                                      _assignments(change), int(threads)))
+    return json.loads(_lane_keeping.how_far(config_layers(nominal, overrides), _runs(logs, "logs"),
+                                            _runs(holdout, "holdout"), _assignments(change), int(threads)))
 
 
 def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threads=2, noise_reference_draws=19,

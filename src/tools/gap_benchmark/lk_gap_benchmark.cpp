@@ -60,8 +60,6 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 void makeDir(const std::string& path) { ::mkdir(path.c_str(), 0755); }
 
-/// JSON has no NaN: a figure that was not measured is null.
-json finiteOrNull(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 
 json readJson(const std::string& path) {
   std::ifstream in(path);
@@ -254,15 +252,12 @@ void ceiling(const std::string& dir, const std::string& filter, int threads) {
     const std::vector<double> gaps = heldoutGaps(training, heldout, {truth_change}, options);
     const double shrink = gaps[0] > 0.0 ? 1.0 - gaps[1] / gaps[0] : 0.0;
     // And in closed loop, as how_far measures a verdict: what a perfect verdict's simulation would close.
-    const ClosedLoopGap closed = closedLoopHowFar(training, heldout, truth_change, options);
-    const double net = closed.net_before > 0.0 ? 1.0 - closed.net_after / closed.net_before : kNaN;
+    // report.json's how_far object, by its writer: its net_shrink is the truth model's how far.
+    const json closed = json::parse(closedLoopGapJson(closedLoopHowFar(training, heldout, truth_change, options)));
     makeDir(dir + "/reports/" + c.id);
     writeJson(dir + "/reports/" + c.id + "/ceiling.json",
-              {{"gap_before", gaps[0]}, {"truth_gap_after", gaps[1]}, {"truth_shrink", shrink},
-               {"how_far", {{"before", finiteOrNull(closed.before)}, {"after", finiteOrNull(closed.after)},
-                            {"noise_floor", finiteOrNull(closed.noise_floor)}, {"net_before", finiteOrNull(closed.net_before)},
-                            {"net_after", finiteOrNull(closed.net_after)}}},
-               {"truth_net_how_far", finiteOrNull(net)}});
+              {{"gap_before", gaps[0]}, {"truth_gap_after", gaps[1]}, {"truth_shrink", shrink}, {"how_far", closed}});
+    const double net = closed["net_shrink"].is_number() ? closed["net_shrink"].get<double>() : kNaN;
     std::fprintf(stderr, "[ceiling]  %-44s truth model shrink %6.1f %%, how far %6.1f %% net  %.1f s\n", c.id.c_str(),
                  100.0 * shrink, 100.0 * net, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
@@ -275,14 +270,16 @@ double truthShrink(const std::string& dir, const std::string& id) {
   return json::parse(in)["truth_shrink"].get<double>();
 }
 
-/// The truth model's closed-loop shrink net of the logs' noise (ceiling.json), or NaN where `ceiling` has not
-/// run, ran before it measured the closed loop, or the closed loop gave no net gap.
+/// The truth model's closed-loop shrink net of the logs' noise (ceiling.json's how_far.net_shrink), or NaN where
+/// `ceiling` has not run, ran before it measured the closed loop, or the closed loop gave no net gap.
 double truthNetHowFar(const std::string& dir, const std::string& id) {
   std::ifstream in(dir + "/reports/" + id + "/ceiling.json");
   if (!in) return kNaN;
   const json ceiling = json::parse(in);
-  const auto it = ceiling.find("truth_net_how_far");
-  return it == ceiling.end() || !it->is_number() ? kNaN : it->get<double>();
+  const auto how_far = ceiling.find("how_far");
+  if (how_far == ceiling.end() || !how_far->is_object()) return kNaN;
+  const auto net = how_far->find("net_shrink");
+  return net == how_far->end() || !net->is_number() ? kNaN : net->get<double>();
 }
 
 /// Whether a verdict's form names the truth's: equal to it, or among the forms the logs cannot tell apart

@@ -266,6 +266,8 @@ struct GapReport {
 void writeGapReportJson(const std::string& path, const GapReport& report);
 /// The text writeGapReportJson writes (report.json), e.g. for a service response.
 std::string gapReportJson(const GapReport& report);
+/// report.json's `how_far` object alone, as JSON text (the benchmark's ceiling, Python's how_far).
+std::string closedLoopGapJson(const ClosedLoopGap& how_far);
 /// Reads it back (tests, the benchmark scorer). Accepts the file or its directory. Throws InputError
 /// naming the file and the JSON path (e.g. "$.verdict.effect: missing") if a DESIGN §5 key is absent
 /// or has the wrong type; fields beyond DESIGN §5 default when absent.

@@ -359,6 +359,8 @@ const std::vector<std::string>& candidateEffectNames() {
 
 std::string gapReportJson(const GapReport& report) { return toJson(report).dump(2) + "\n"; }
 
+std::string closedLoopGapJson(const ClosedLoopGap& how_far) { return toJson(how_far).dump(); }
+
 void writeGapReportJson(const std::string& path_or_dir, const GapReport& report) {
   const std::string path = resolvePath(path_or_dir);
   const std::string text = gapReportJson(report);
