@@ -39,7 +39,8 @@ void usage(std::ostream& out) {
   out << "usage: lk_gap --config nominal.yaml [--set key=value ...] --log run.csv|run.bag [--scenario run.yaml]\n"
          "              [--log ...] [--holdout other.csv|other.bag [--scenario other.yaml] ...] --report DIR\n"
          "              [--effects a,b] [--threads N] [--coarse-fit-stride K] [--noise-reference-draws N]\n"
-         "              [--one-fold] [--candidate-forms-only] [--time-budget HOURS] [--no-plots] [--quiet]\n"
+         "              [--one-fold] [--candidate-forms-only] [--no-closed-loop-placement] [--time-budget HOURS]\n"
+         "              [--no-plots] [--quiet]\n"
          "  --config   the nominal configuration (the same YAML lk_simulate and the nodes use): the car, its\n"
          "             controllers and delays, shared by every run\n"
          "  --log      a log of a real run (CSV with DESIGN §5 columns, or a bag of the suite's topics)\n"
@@ -76,6 +77,9 @@ void usage(std::ostream& out) {
          "  --candidate-forms-only   do not fit the other forms of the leader and of further effects\n"
          "             (LuGre kingpin friction for steering_friction, a soft saturation for torque_limit,\n"
          "             the contact patch's length for cornering_stiffness; docs/gap.md, \"How far\")\n"
+         "  --no-closed-loop-placement   keep one named effect at the replays' fit where its closed loop closes\n"
+         "             clearly less than its replays (default: placed by the training runs' closed loop among the\n"
+         "             values the replays cannot tell apart; docs/gap.md, \"Placed by the closed loop\")\n"
          "  --time-budget HOURS   refuse logs whose diagnosis is estimated to take longer (default 1; the\n"
          "             estimate is printed when it exceeds 10 minutes; docs/reliability.md)\n";
 }
@@ -152,6 +156,7 @@ Arguments parseArguments(int argc, char** argv) {
     else if (arg == "--no-targeted-test") a.options.targeted_delay_test = false;
     else if (arg == "--max-side-force") a.options.max_side_force = numberOption(arg, value(), 0.0, 10.0, "g");
     else if (arg == "--candidate-forms-only") a.options.leader_forms = false;
+    else if (arg == "--no-closed-loop-placement") a.options.closed_loop_placement = false;
     else if (arg == "--no-plots") a.plots = false;
     else if (arg == "--quiet") a.quiet = true;
     else if (arg == "--help" || arg == "-h") {

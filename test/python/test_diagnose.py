@@ -74,16 +74,17 @@ def test_the_report_is_lk_gaps_from_files_and_from_frames(lk, logs):
 
 
 def test_the_folds_and_forms_switches_are_lk_gaps(lk, logs):
-    """two_folds / leader_forms off are lk_gap's --one-fold / --candidate-forms-only; the leader's LuGre form is
-    fitted (its note) only when they are on."""
+    """two_folds / leader_forms / closed_loop_placement off are lk_gap's --one-fold / --candidate-forms-only /
+    --no-closed-loop-placement; the leader's LuGre form is fitted (its note) only when they are on."""
     folder, runs = logs
     (train, train_scenario), (held, held_scenario) = runs["train"], runs["held"]
     expected = lk_gap_report(folder, "--log", train, "--scenario", train_scenario, "--holdout", held, "--scenario",
-                             held_scenario, "--one-fold", "--candidate-forms-only")
+                             held_scenario, "--one-fold", "--candidate-forms-only", "--no-closed-loop-placement")
     assert expected["verdict"]["effect"] == "steering_friction"
     assert not any("leader's forms" in n for n in expected["notes"])
+    assert not any("by the closed loop" in n for n in expected["notes"])
     off = lk.diagnose(NOMINAL, [{"log": train, "scenario": train_scenario}], [{"log": held, "scenario": held_scenario}],
-                      two_folds=False, leader_forms=False, **OPTIONS)
+                      two_folds=False, leader_forms=False, closed_loop_placement=False, **OPTIONS)
     assert without_wall_times(off) == without_wall_times(expected)
     on = lk.diagnose(NOMINAL, [{"log": train, "scenario": train_scenario}], [{"log": held, "scenario": held_scenario}],
                      **OPTIONS)

@@ -88,6 +88,10 @@ struct DiagnosisOptions {
   /// Fit the leader's other forms (LuGre kingpin friction, a soft saturation) and let the one that fits
   /// better stand for it (leader_forms.h; issue 47, kind 7).
   bool leader_forms = true;
+  /// Place a single named effect by the training runs' closed loop where its own closed loop closes clearly
+  /// less of the gap than its replays, among the values the replays cannot tell from its fit
+  /// (closed_loop_placement.h; issue 47, kind 7).
+  bool closed_loop_placement = true;
   /// Which fold this diagnosis is: 0 the split as splitData makes it, 1 another fold (its two sides
   /// swapped, or one run held out of three or more; set by the diagnosis for the folds it runs).
   int fold = 0;

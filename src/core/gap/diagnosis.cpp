@@ -10,6 +10,7 @@
 #include "lane_keeping/common/brief_number.h"
 #include "lane_keeping/common/errors.h"
 #include "lane_keeping/common/parallel_for.h"
+#include "lane_keeping/gap/decision/closed_loop_placement.h"
 #include "lane_keeping/gap/decision/fold_pooling.h"
 #include "lane_keeping/gap/decision/forward_selection.h"
 #include "lane_keeping/gap/decision/knock_on.h"
@@ -648,6 +649,15 @@ GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRu
     }
   }
   if (!contradicted.empty()) report.verdict = unexplainedVerdict(report.verdict.gap_before, contradicted);
+  // A single effect whose closed loop closes clearly less than its replays: placed by the training runs'
+  // closed loop among the values its replays cannot tell apart (closed_loop_placement.h).
+  if (winner != nullptr && how_far_options.closed_loop && placementApplies(report, options)) {
+    say("placing " + winner->effect->label() + " by the closed loop");
+    const Clock::time_point place_start = Clock::now();
+    placeVerdict(*winner, fit_context, train_runs, heldout.empty() ? train_runs : held_runs, heldout.empty(), options,
+                 how_far_options, &report, artifacts);
+    report.wall_seconds.emplace_back("closed-loop placement", secondsSince(place_start));
+  }
 
   // ---- 5. A gap that sets in mid-run, unexplained over the whole log: again from its onset (gap_onset.h)
   if (diagnoseFromOnsetApplies(report, training, heldout, options)) {

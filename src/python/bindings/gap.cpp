@@ -127,6 +127,9 @@ py::tuple diagnose(py::handle nominal_layers, py::sequence training_runs, py::se
   }
   if (options_in.contains("targeted_test")) options.targeted_delay_test = options_in["targeted_test"].cast<bool>();
   options.leader_forms = options_in["leader_forms"].cast<bool>();
+  if (options_in.contains("closed_loop_placement")) {
+    options.closed_loop_placement = options_in["closed_loop_placement"].cast<bool>();
+  }
   if (options.noise_reference_draws < 0 || options.noise_reference_draws > 100) {
     throw ConfigError("noise_reference_draws must be between 0 and 100");
   }

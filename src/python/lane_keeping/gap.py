@@ -80,7 +80,7 @@ def how_far(nominal, logs, holdout=None, *, change, overrides=None, threads=2):
 
 def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threads=2, noise_reference_draws=19,
              coarse_fit_stride=3, two_folds=True, every_fold=False, leader_forms=True, measured_corrections=True,
-             targeted_test=True, max_side_force=0.1, progress=None, series=False):
+             targeted_test=True, max_side_force=0.1, closed_loop_placement=True, progress=None, series=False):
     """The sim-to-real gap diagnosis, as `lk_gap --config NOMINAL --log ... [--holdout ...] --report DIR`.
 
     nominal:  the nominal configuration (as simulate() takes it; a `log:` section maps every log's columns)
@@ -103,6 +103,10 @@ def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threa
                    the noise-only draws (False: lk_gap --no-targeted-test)
     max_side_force: the largest steady side force [g of the car's weight] a candidate may fit and still be the
                     cause (lk_gap --max-side-force; 0 lifts the bound)
+    closed_loop_placement: place one named effect by the training runs' closed loop, among the values its replays
+                           cannot tell apart, where its closed loop closes clearly less than its replays
+                           (False: lk_gap --no-closed-loop-placement; the placed values in the effect's "params",
+                           the replays' own in its "replay_params")
     progress: a callable given each progress message (lk_gap prints them on stderr)
     series:   also return the plots' series (residuals.csv, spectrum.csv, overlay.csv) as DataFrames
 
@@ -113,7 +117,7 @@ def diagnose(nominal, logs, holdout=None, *, overrides=None, effects=None, threa
                "coarse_fit_stride": int(coarse_fit_stride), "effects": list(effects or []),
                "two_folds": bool(two_folds), "every_fold": bool(every_fold), "leader_forms": bool(leader_forms),
                "measured_corrections": bool(measured_corrections), "targeted_test": bool(targeted_test),
-               "max_side_force": float(max_side_force)}
+               "max_side_force": float(max_side_force), "closed_loop_placement": bool(closed_loop_placement)}
     text, artifacts = _lane_keeping.diagnose(config_layers(nominal, overrides), _runs(logs, "logs"),
                                              _runs(holdout, "holdout"), options, progress)
     report = json.loads(text)

@@ -2,6 +2,7 @@
 /// How far the gap shrinks once the winning effect is added (diagnosis.h, step 4; DESIGN §5 question 3):
 /// the held-out excess of every subsystem before and after, and the closed-loop replay of whole runs
 /// with the nominal and the corrected configuration.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,14 @@ constexpr double kClosedLoopShareOfShrink = 0.5;
 /// The nominal's net closed-loop gap must reach this share of the noise floor for the note: below it the
 /// closed loop hardly sees the effect (the floor's estimate is good to ~0.25 of itself in the net).
 constexpr double kClosedLoopVisible = 0.5;
+
+/// The lateral velocity each run's closed loop starts from: its chassis replay's estimate at the log's start
+/// (NaN where it gives none). Run on options.threads threads.
+std::vector<double> closedLoopStarts(const std::vector<RunData>& runs, const DiagnosisOptions& options);
+
+/// What a perfect model's closed-loop replay of `log` still leaves of each channel's gap (y, yaw rate, delta):
+/// closedLoopNoiseFloor at the log's white noise levels, read from the upper half of each channel's band.
+std::array<double, 3> closedLoopFloor(const LogSignals& log);
 
 /// A note where a verdict named by the replays, led by a physical effect, shrinks the closed-loop gap net of
 /// noise by less than kClosedLoopShareOfShrink of its held-out shrink while the closed loop sees the gap

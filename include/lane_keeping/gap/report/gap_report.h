@@ -108,6 +108,10 @@ struct VerdictEffect {
   std::string form;                            ///< its channel (sensor errors) or placement ("" for one form)
   std::map<std::string, double> params;        ///< fitted parameters, SI units
   std::map<std::string, double> param_sigma;   ///< their 1-sigma uncertainty
+  /// The replays' own fit where the closed loop placed the effect (decision/closed_loop_placement.h: `params`,
+  /// `param_sigma` and `config` are then the placed values; `share` and `gap_after` stay the replays' fit's);
+  /// empty otherwise.
+  std::map<std::string, double> replay_params;
   std::map<std::string, std::string> config;   ///< the config overlay that adds it ("key" -> "value")
   double share = 0.0;       ///< its share of the held-out gap: (gap before it - gap with it) / gap_before
   double gap_after = 0.0;   ///< held-out gap with it and every effect before it

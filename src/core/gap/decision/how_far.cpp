@@ -21,6 +21,24 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 
 }  // namespace
 
+std::vector<double> closedLoopStarts(const std::vector<RunData>& runs, const DiagnosisOptions& options) {
+  std::vector<double> start_sigma1(runs.size(), kNaN);
+  parallelFor(runs.size(), options.threads, [&](std::size_t i) {
+    const Evaluation chassis = evaluate(nullptr, wholeLogs({runs[i]}, 0.0), {"chassis"}, options.replay);
+    if (!chassis.sigma1.empty() && !chassis.sigma1[0].empty()) start_sigma1[i] = chassis.sigma1[0].front().second;
+  });
+  return start_sigma1;
+}
+
+std::array<double, 3> closedLoopFloor(const LogSignals& log) {
+  // The white levels from the upper half band. (The three white levels only: estimatedNoise's channel
+  // characters took 0.3 s of a 60 s 1 kHz log.)
+  const auto stretches = holeFreeStretches(log.times());
+  return closedLoopNoiseFloor(log, {whiteNoiseLevel(log, LogSignals::kY, stretches),
+                                    whiteNoiseLevel(log, LogSignals::kYawRate, stretches),
+                                    whiteNoiseLevel(log, LogSignals::kDelta, stretches)});
+}
+
 std::string closedLoopStillMisses(const GapReport& report) {
   const ClosedLoopGap& h = report.how_far;
   const GapVerdict& v = report.verdict;
@@ -90,13 +108,8 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
     }
     report->how_far.not_run = why.empty() ? "closed-loop replays switched off (DiagnosisOptions::closed_loop)" : why;
   } else {
-    // Each run's nominal and corrected closed loops are independent: side by side on the threads
-    // (each starts from the lateral velocity its run's chassis replay estimates at the log's start).
-    std::vector<double> start_sigma1(runs.size(), kNaN);
-    parallelFor(runs.size(), options.threads, [&](std::size_t i) {
-      const Evaluation chassis = evaluate(nullptr, wholeLogs({runs[i]}, 0.0), {"chassis"}, options.replay);
-      if (!chassis.sigma1.empty() && !chassis.sigma1[0].empty()) start_sigma1[i] = chassis.sigma1[0].front().second;
-    });
+    // Each run's nominal and corrected closed loops are independent: side by side on the threads.
+    const std::vector<double> start_sigma1 = closedLoopStarts(runs, options);
     std::vector<ClosedLoopReplay> nominal(runs.size()), corrected(runs.size());
     std::vector<std::string> from_onset(runs.size());  // how each run's correction was timed, where it was
     // Measured sensor errors corrected before the fits (DiagnosisOptions::how_far_before): the runs' configurations
@@ -154,12 +167,8 @@ void howFar(const CandidateFit* winner, const Evaluation& nominal_held,
         before += b.gap * b.gap;
         after += a.gap * a.gap;
         // A perfect model's replay still differs from the log by the log's own noise (issue 47, kind 7):
-        // "0.100 -> 0.081" may be all the noise leaves. Its white levels from the upper half band.
-        // (The three white levels only: estimatedNoise's channel characters took 0.3 s of a 60 s 1 kHz log.)
-        const auto stretches = holeFreeStretches(log.times());
-        const auto floor = closedLoopNoiseFloor(log, {whiteNoiseLevel(log, LogSignals::kY, stretches),
-                                                      whiteNoiseLevel(log, LogSignals::kYawRate, stretches),
-                                                      whiteNoiseLevel(log, LogSignals::kDelta, stretches)});
+        // "0.100 -> 0.081" may be all the noise leaves.
+        const auto floor = closedLoopFloor(log);
         floor2 += (floor[0] * floor[0] + floor[1] * floor[1] + floor[2] * floor[2]) / 3.0;
         const double nb = netClosedLoopGap(b, floor), na = netClosedLoopGap(a, floor);
         net_before += nb * nb;

@@ -22,7 +22,7 @@
 //                  "shrink", "score", "closed_loop_bounded", "closed_loop_checked", "implausible" (only where it is)}],
 //     "verdict": { "effect", "form", "confidence", "gap_before", "gap_after", "shrink", "reason",
 //                  "basis" ("replays", "modal": named on the loop's modes, modal_evidence.h, "targeted": a delay named on its own fit against the draws' same fit, targeted_test.h, or "measured": a sensor error the input checks measured, decision/measured_sensor_errors.h), "confusable_with": [..],
-//                  "effects": [{"effect", "form", "params": {}, "param_sigma": {}, "config": {}, "share", "gap_after",
+//                  "effects": [{"effect", "form", "params": {}, "param_sigma": {}, ["replay_params": {}], "config": {}, "share", "gap_after",
 //                               "evidence", "sensor", "measured" (only where true), "confusable_with": [..]}], "combined_gap_after", "combined_shrink",
 //                  "partial": {"effect", "form", "share", "untouched_share", "whiteness_p", "input_correlation_p"}
 //                  (only when a candidate explains part of the gap) },
@@ -161,6 +161,7 @@ OrderedJson toJson(const GapVerdict& v) {
     j["form"] = e.form;
     j["params"] = numberMap(e.params);
     j["param_sigma"] = numberMap(e.param_sigma);
+    if (!e.replay_params.empty()) j["replay_params"] = numberMap(e.replay_params);  // only where placed
     j["config"] = e.config;
     j["share"] = number(e.share);
     j["gap_after"] = number(e.gap_after);
@@ -552,6 +553,7 @@ GapReport readGapReportJson(const std::string& path_or_dir) {
     r.get(e, p, "form", &s.form);
     r.get(e, p, "params", &s.params);
     r.get(e, p, "param_sigma", &s.param_sigma);
+    r.get(e, p, "replay_params", &s.replay_params);  // absent: not placed
     r.get(e, p, "config", &s.config);
     r.get(e, p, "share", &s.share);
     r.get(e, p, "gap_after", &s.gap_after);

@@ -122,6 +122,17 @@ void writeVerdict(std::ostream& out, const GapReport& r) {
            "corrected before the fits; the gap before is the logs' as they were\n";
   }
   if (!v.reason.empty()) out << "- reason: " << v.reason << "\n";
+  if (v.effects.size() == 1 && !v.effects.front().replay_params.empty()) {
+    // closed_loop_placement.h: the values to simulate with are the placed ones.
+    const VerdictEffect& e = v.effects.front();
+    out << "- placed by the closed loop of the training runs (among the values the replays cannot tell apart):";
+    for (const auto& [name, value] : e.params) {
+      const auto fitted = e.replay_params.find(name);
+      out << " " << name << " " << num(value, "%.4g")
+          << (fitted != e.replay_params.end() ? " (the replays' fit " + num(fitted->second, "%.4g") + ")" : "");
+    }
+    out << "\n";
+  }
   out << "- confusable with: " << (v.confusable_with.empty() ? "none reported" : join(v.confusable_with, ", "))
       << "\n";
   const GapDetection& d = r.detection;
