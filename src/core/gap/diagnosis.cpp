@@ -645,6 +645,7 @@ GapReport diagnoseAsConfigured(const SimConfig& nominal, const std::vector<GapRu
                             "); with the leader alone " + briefNumber(alone.how_far.net_before) + " -> " +
                             briefNumber(alone.how_far.net_after) + ": the further effects are not named");
       report = std::move(alone);
+      winner = leader_alone;  // what the report now names (the closed-loop placement reads it)
       contradicted.clear();
     }
   }

@@ -60,6 +60,11 @@ struct ClosedLoopPlacement {
 ClosedLoopPlacement placeByClosedLoop(const CandidateFit& fit, const FitContext& context, const std::vector<RunData>& runs,
                                       const DiagnosisOptions& options);
 
+/// Whether `fit` is the one effect the report's verdict names (its effect and form): only that fit is placed.
+/// (Where the verdict names the leader alone, its further effects dropped because their combined closed loop
+/// was contradicted, the combination's fit is not it.)
+bool verdictNames(const GapReport& report, const CandidateFit& fit);
+
 /// Whether the report's verdict is placed (with options.closed_loop_placement): one effect named by the
 /// replays, whose how far sees the gap (its nominal net gap at least kClosedLoopVisible of the floor), leaves at
 /// least kClosedLoopVisible of the floor of it (less is within the floor's own error) and closes less than

@@ -176,6 +176,14 @@ ClosedLoopPlacement placeByClosedLoop(const CandidateFit& fit, const FitContext&
 }
 
 
+bool verdictNames(const GapReport& report, const CandidateFit& fit) {
+  if (fit.effect == nullptr || report.verdict.effects.size() != 1) return false;
+  const VerdictEffect& named = report.verdict.effects.front();
+  // Its form, or its form first among forms the data cannot tell apart ("pose or ...").
+  return named.effect == fit.effect->name &&
+         (named.form == fit.effect->form || named.form.rfind(fit.effect->form + " or ", 0) == 0);
+}
+
 bool placementApplies(const GapReport& report, const DiagnosisOptions& options) {
   const GapVerdict& v = report.verdict;
   const ClosedLoopGap& h = report.how_far;
@@ -198,6 +206,7 @@ bool placementApplies(const GapReport& report, const DiagnosisOptions& options) 
 void placeVerdict(const CandidateFit& winner, const FitContext& context, const std::vector<RunData>& training_runs,
                   const std::vector<RunData>& how_far_runs, bool in_sample, const DiagnosisOptions& options,
                   const DiagnosisOptions& how_far_options, GapReport* report, DiagnosisArtifacts* artifacts) {
+  if (!verdictNames(*report, winner)) return;  // only the fit the verdict names is placed
   const ClosedLoopPlacement placement = placeByClosedLoop(winner, context, training_runs, options);
   if (placement.note.empty()) return;
   if (!placement.placed) {

@@ -78,6 +78,30 @@ std::string markdownOf(const GapReport& r) {
   return text.str();
 }
 
+// Only the fit the verdict names is placed: where the report names the leader alone (its further effects dropped
+// because their combined closed loop was contradicted) the fit at hand may still be the combination's last effect.
+TEST(ClosedLoopPlacement, OnlyTheFitTheVerdictNamesIsPlaced) {
+  GapReport r = oneEffect(1.0, 0.3785, 0.1042);
+  r.verdict.effects[0].form = "pose";
+  CandidateFit fit;
+  for (const CandidateEffect& c : candidateEffects()) {
+    if (c.name == "sensor_latency" && c.form == "pose") fit.effect = &c;
+  }
+  ASSERT_NE(fit.effect, nullptr);
+  EXPECT_TRUE(verdictNames(r, fit));
+  r.verdict.effects[0].form = "pose or yaw_rate";  // tied forms: the first is the fit's
+  EXPECT_TRUE(verdictNames(r, fit));
+  r.verdict.effects[0].form = "yaw_rate";
+  EXPECT_FALSE(verdictNames(r, fit));
+  r.verdict.effects[0].form = "pose";
+  CandidateFit other;
+  other.effect = &candidateEffect("steering_compliance");
+  EXPECT_FALSE(verdictNames(r, other));
+  EXPECT_FALSE(verdictNames(r, CandidateFit{}));
+  r.verdict.effects.resize(2);
+  EXPECT_FALSE(verdictNames(r, fit));
+}
+
 TEST(ClosedLoopPlacement, TheReplaysOwnFitIsKeptBesideThePlacedValues) {
   GapReport r = oneEffect(1.0, 0.3785, 0.0244);
   r.verdict.effects[0].params = {{"latency", 0.0968}};
