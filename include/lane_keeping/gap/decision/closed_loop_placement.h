@@ -46,10 +46,10 @@ struct ClosedLoopPlacement {
   static constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   bool placed = false;
   std::vector<double> theta;  ///< the placed parameters (SI); the fit's own where not placed
-  /// The training runs' closed-loop gap net of noise (RMS over runs): the nominal's, at the fit, placed.
-  double nominal_net = kNaN, fit_net = kNaN, placed_net = kNaN;
-  /// The replays' training loss at the fit and placed.
-  double fit_loss = kNaN, placed_loss = kNaN;
+  /// The training runs' closed-loop gap net of noise (RMS over runs): the nominal's and at the fit (the note
+  /// gives it where placed).
+  double nominal_net = kNaN, fit_net = kNaN;
+  double fit_loss = kNaN;  ///< the replays' training loss at the fit
   std::size_t closed_loops = 0;  ///< closed-loop runs it took
   std::string note;              ///< what was tried and found (empty where it did not run)
 };

@@ -152,8 +152,6 @@ ClosedLoopPlacement placeByClosedLoop(const CandidateFit& fit, const FitContext&
     const std::vector<double> around = best.x;
     scan(around, v, -0.75 * spacing, 0.75 * spacing, kRefinePoints);
   }
-  out.placed_net = best.net;
-  out.placed_loss = best.loss;
   const std::vector<double> theta = objective.toTheta(best.x.data());
   std::string values;
   for (std::size_t j = 0; j < p; ++j) {
@@ -174,7 +172,6 @@ ClosedLoopPlacement placeByClosedLoop(const CandidateFit& fit, const FitContext&
   }
   return out;
 }
-
 
 bool verdictNames(const GapReport& report, const CandidateFit& fit) {
   if (fit.effect == nullptr || report.verdict.effects.size() != 1) return false;
@@ -240,8 +237,8 @@ void placeVerdict(const CandidateFit& winner, const FitContext& context, const s
     return;
   }
   note += "; the held-out replays' gap " + briefNumber(winner.heldout_after) + " at the replays' fit, " +
-          briefNumber(placed.heldout_after) + " placed (of " + briefNumber(v.gap_before) + "); how far " + briefNumber(report->how_far.net_before) + " -> " + briefNumber(report->how_far.net_after) +
-          " at the replays' fit, " + briefNumber(with.how_far.net_after) + " placed, net of noise" +
+          briefNumber(placed.heldout_after) + " placed (of " + briefNumber(v.gap_before) + "); how far " +
+          briefNumber(report->how_far.net_before) + " -> " + briefNumber(report->how_far.net_after) + " at the replays' fit, " + briefNumber(with.how_far.net_after) + " placed, net of noise" +
           (in_sample ? " (in-sample: no run is held out, so the closed loop that placed it is the one how far is "
                        "measured on)" : " (on the held-out runs, which the placement did not see)");
   std::vector<std::string> notes;
